@@ -1,0 +1,20 @@
+#pragma once
+// Argument parsing helpers shared by the commands.
+
+#include <CLI/Error.hpp>  // Validators.hpp uses it without including it
+#include <CLI/Validators.hpp>
+#include <Eigen/Core>
+#include <string>
+
+namespace plumb::cli {
+
+// "X,Y,Z" as three finite numbers. Throws plumb::Error naming `option` otherwise.
+Eigen::Vector3d parseVector3(const std::string& text, const std::string& option);
+
+// A CLI11 check: a finite number in [min, max] (CLI::Range lets NaN through).
+CLI::Validator finiteIn(double min, double max);
+
+// 1234567 -> "1,234,567".
+std::string withThousands(std::uint64_t value);
+
+}  // namespace plumb::cli
