@@ -18,5 +18,7 @@ struct Command {
 
 // Each adds its subcommand to `plumb` (one file per command).
 Command addSimulateCommand(CLI::App& plumb);
+Command addImportCommand(CLI::App& plumb);
+Command addInfoCommand(CLI::App& plumb);
 
 }  // namespace plumb::cli

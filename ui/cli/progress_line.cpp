@@ -2,44 +2,89 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace plumb::cli {
 namespace {
 
-// A bar appears only after this long, so quick commands print nothing but their result.
 constexpr double kQuietSeconds = 1.0;
 constexpr double kTerminalIntervalSeconds = 0.1;
 constexpr double kLogIntervalSeconds = 5.0;
-constexpr int kBarWidth = 30;
+constexpr int kBarWidth = 24;
+
+double secondsBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+std::string bar(double fraction) {
+  const auto filled = static_cast<std::size_t>(std::clamp(fraction, 0.0, 1.0) * kBarWidth);
+  return "[" + std::string(filled, '#') + std::string(kBarWidth - filled, ' ') + "]";
+}
 
 }  // namespace
 
 ProgressLine::ProgressLine(std::string label)
-    : label_(std::move(label)), terminal_(::isatty(STDERR_FILENO) == 1), start_(Clock::now()), last_print_(start_) {}
+    : label_(std::move(label)),
+      terminal_(::isatty(STDERR_FILENO) == 1),
+      start_(Clock::now()),
+      last_print_(start_),
+      phase_start_(start_) {}
 
 ProgressLine::~ProgressLine() {
   finish();
 }
 
-void ProgressLine::update(double fraction) {
+bool ProgressLine::due() {
   const Clock::time_point now = Clock::now();
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double since_print = std::chrono::duration<double>(now - last_print_).count();
-  if (elapsed < kQuietSeconds || since_print < (terminal_ ? kTerminalIntervalSeconds : kLogIntervalSeconds)) return;
+  if (secondsBetween(start_, now) < kQuietSeconds) return false;
+  if (shown_ && secondsBetween(last_print_, now) < (terminal_ ? kTerminalIntervalSeconds : kLogIntervalSeconds)) {
+    return false;
+  }
   last_print_ = now;
+  return true;
+}
+
+void ProgressLine::show(const std::string& text) {
   shown_ = true;
-  const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-  const int percent = static_cast<int>(std::lround(100.0 * fraction));
   if (terminal_) {
-    const int filled = static_cast<int>(kBarWidth * fraction);
-    std::fprintf(stderr, "\r%s [%-*s] %3d%%  %.0f s left ", label_.c_str(), kBarWidth,
-                 std::string(static_cast<std::size_t>(filled), '#').c_str(), percent, left);
+    std::fprintf(stderr, "\r\033[K%s: %s", label_.c_str(), text.c_str());
   } else {
-    std::fprintf(stderr, "%s: %d%% after %.0f s, about %.0f s left\n", label_.c_str(), percent, elapsed, left);
+    std::fprintf(stderr, "%s: %s\n", label_.c_str(), text.c_str());
   }
   std::fflush(stderr);
+}
+
+void ProgressLine::update(double fraction) {
+  if (!due()) return;
+  const double elapsed = secondsBetween(start_, Clock::now());
+  const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  char text[128];
+  std::snprintf(text, sizeof text, "%s %3.0f%%, %.0f s left", terminal_ ? bar(fraction).c_str() : "", 100.0 * fraction,
+                left);
+  show(text);
+}
+
+void ProgressLine::update(std::string_view phase, std::uint64_t done, std::uint64_t total) {
+  if (phase != phase_) {
+    phase_ = phase;
+    phase_start_ = Clock::now();
+  }
+  if (!due()) return;
+  const double elapsed = std::max(secondsBetween(phase_start_, Clock::now()), 1e-9);
+  const double rate = static_cast<double>(done) / elapsed;
+  char text[160];
+  if (total > 0) {
+    const double fraction = static_cast<double>(done) / static_cast<double>(total);
+    const double left = rate > 0.0 ? static_cast<double>(total - std::min(done, total)) / rate : 0.0;
+    std::snprintf(text, sizeof text, "%s %s %3.0f%%, %.2f M points/s, %.0f s left", phase_.c_str(),
+                  terminal_ ? bar(fraction).c_str() : "", 100.0 * fraction, rate / 1e6, left);
+  } else {
+    std::snprintf(text, sizeof text, "%s %.1f M points, %.2f M points/s", phase_.c_str(),
+                  static_cast<double>(done) / 1e6, rate / 1e6);
+  }
+  show(text);
 }
 
 void ProgressLine::finish() {

@@ -1,0 +1,109 @@
+#pragma once
+// Streaming point-cloud readers: PLY, LAS, PCD and ASCII (XYZ, TXT, PTS, CSV).
+//
+// A reader delivers points in batches of bounded size and never holds the whole file in memory.
+// Points with NaN or infinite coordinates are skipped and counted (ReadCounts), never passed on.
+// Anything malformed (truncated data, counts that disagree with the data, unknown types) throws
+// plumb::Error naming the file and the byte offset or line.
+//
+// Not thread-safe: one thread reads one reader.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace plumb::io {
+
+// One point: world coordinates (any scale and offset of the file applied), 16-bit colour and
+// intensity (8-bit sources are scaled by 257 so that 255 becomes 65535; 0 where absent).
+struct PointRecord {
+  double x, y, z;
+  std::array<std::uint16_t, 3> rgb;
+  std::uint16_t intensity;
+};
+
+struct PointBatch {
+  std::vector<PointRecord> points;
+  // One normal per point when the file has normals (CloudInfo::attributes.normals), else empty.
+  std::vector<std::array<float, 3>> normals;
+
+  std::size_t size() const { return points.size(); }
+  void clear() {
+    points.clear();
+    normals.clear();
+  }
+};
+
+struct PointAttributes {
+  bool colour = false;
+  bool intensity = false;
+  bool normals = false;
+};
+
+struct Bounds {
+  std::array<double, 3> min, max;
+};
+
+// What the header says, known once the reader is open.
+struct CloudInfo {
+  std::string format;                            // e.g. "PLY binary_little_endian", "LAS 1.4 point format 6"
+  std::optional<std::uint64_t> declared_points;  // the count the header states, if it states one
+  std::optional<Bounds> declared_bounds;         // the bounds the header states (LAS), unchecked
+  PointAttributes attributes;
+  // Properties or fields present in the file but not kept, e.g. "label (int)".
+  std::vector<std::string> ignored_fields;
+};
+
+// What reading found, growing as batches are read.
+struct ReadCounts {
+  std::uint64_t delivered = 0;   // points handed out
+  std::uint64_t non_finite = 0;  // skipped: a NaN or infinite coordinate (organized PCD invalid pixels too)
+};
+
+class PointReader {
+ public:
+  virtual ~PointReader() = default;
+
+  const CloudInfo& info() const { return info_; }
+  const ReadCounts& counts() const { return counts_; }
+  const std::string& path() const { return path_; }
+
+  // Clears `batch` and fills it with up to `max_points` points. Returns false when the file is
+  // exhausted and the batch is empty. Throws plumb::Error on malformed content; after the last
+  // point it also checks that the data matched the header (no missing and no surplus records).
+  virtual bool read(PointBatch& batch, std::size_t max_points) = 0;
+
+ protected:
+  explicit PointReader(std::string path) : path_(std::move(path)) {}
+
+  std::string path_;
+  CloudInfo info_;
+  ReadCounts counts_;
+};
+
+struct ReaderOptions {
+  // ASCII formats only: the meaning of each column, e.g. "x,y,z,i,r,g,b" (names: x y z, i for
+  // intensity, r g b, nx ny nz, and _ for a column to ignore). Empty: detected from the header
+  // line or the column count.
+  std::string columns;
+};
+
+// Opens `path` with the reader its content (and, for ASCII, its extension) calls for.
+// Throws plumb::Error for an unknown or unsupported format (LAZ is recognised and refused).
+std::unique_ptr<PointReader> openPointCloud(const std::string& path, const ReaderOptions& options = {});
+
+// The readers, for callers that know the format.
+std::unique_ptr<PointReader> openPly(const std::string& path);
+std::unique_ptr<PointReader> openLas(const std::string& path);
+std::unique_ptr<PointReader> openPcd(const std::string& path);
+std::unique_ptr<PointReader> openAscii(const std::string& path, const ReaderOptions& options);
+
+// 8-bit colour to the 16-bit scale of PointRecord.
+constexpr std::uint16_t widenColour(std::uint8_t value) {
+  return static_cast<std::uint16_t>(value * 257);
+}
+
+}  // namespace plumb::io

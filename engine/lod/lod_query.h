@@ -1,0 +1,36 @@
+#pragma once
+// The spatial queries reco/ asks of an octree. Each descends from the root through existing
+// nodes only and stops where the region ends, so its cost follows the size of the region and the
+// level asked for, never the size of the cloud (QueryStats counts the nodes it looked at).
+// Thread-safe: they only read the octree's index.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "engine/lod/octree.h"
+
+namespace plumb::lod {
+
+struct QueryStats {
+  std::uint64_t nodes_visited = 0;
+};
+
+// Nodes of levels 0..max_level whose cell intersects the sphere: together they hold the points
+// of the region at spacing octree.spacing(max_level) (or finer where the tree ends earlier).
+// Ordered parents before children.
+std::vector<const NodeInfo*> nodesInSphere(const Octree& octree, const std::array<double, 3>& centre, double radius,
+                                           std::uint32_t max_level, QueryStats* stats = nullptr);
+
+// Cells of exactly `level` that intersect the sphere and hold a node.
+std::vector<CellKey> cellsInSphere(const Octree& octree, const std::array<double, 3>& centre, double radius,
+                                   std::uint32_t level, QueryStats* stats = nullptr);
+
+// The same cells ordered by the distance of their box from `point` (nearest first; ties by key).
+std::vector<CellKey> cellsByDistance(const Octree& octree, const std::array<double, 3>& point, double radius,
+                                     std::uint32_t level, QueryStats* stats = nullptr);
+
+// Which of the 26 neighbours of `key` hold a node.
+std::vector<CellKey> existingNeighbours(const Octree& octree, const CellKey& key);
+
+}  // namespace plumb::lod

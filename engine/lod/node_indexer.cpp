@@ -1,0 +1,199 @@
+// Per-node grid subsampling and the recursive split into children.
+//
+//   1. A node with at most leaf_max_points points, or at a level whose cells are smaller than
+//      kMinCellSize, is a leaf: it keeps all its points.
+//   2. Otherwise, mark the cells of the 128^3 grid over the node that hold a point of a coarser
+//      level; in every other occupied grid cell keep the point nearest the cell's lower corner
+//      (ties: the earlier point), and move those points to the front.
+//   3. Partition the rest by child octant and build each non-empty child the same way, passing
+//      down the coarser points and this node's own selection that lie in the child.
+//   4. Hand the node to the sink after its children, with the mask of the children that exist.
+
+#include "engine/lod/node_indexer.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "engine/lod/octree_format.h"
+
+namespace plumb::lod {
+namespace {
+
+constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t kTaken = kEmpty - 1;  // holds a point of a coarser level
+constexpr std::size_t kGridCells = std::size_t{kSamplingGrid} * kSamplingGrid * kSamplingGrid;
+// Below a tenth of a millimetre a node stops splitting: its points are as good as duplicates.
+constexpr double kMinCellSize = 1e-4 * kSamplingGrid;
+
+}  // namespace
+
+NodeIndexer::NodeIndexer(const Cube& cube, std::uint32_t leaf_max_points)
+    : cube_(cube), leaf_max_points_(leaf_max_points) {}
+
+bool NodeIndexer::isLeaf(const CellKey& key, std::size_t count) const {
+  return count <= leaf_max_points_ || key.level >= kMaxLevel || cube_.cellSize(key.level) < kMinCellSize;
+}
+
+std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoint> points,
+                                         std::span<const Position> coarser) {
+  if (best_index_.empty()) {
+    best_index_.assign(kGridCells, kEmpty);
+    best_distance_.assign(kGridCells, 0.0f);
+  }
+  const Box3 box = cube_.cellBox(key);
+  const double inverse_step = kSamplingGrid / cube_.cellSize(key.level);
+  // The grid cell of p and p's squared distance from the cell's lower corner, in grid steps.
+  // The lower corner, not the centre: a cell's lower corner is also the lower corner of one of
+  // its sub-cells at every finer level, so the points of all levels together approach a single
+  // regular lattice. Centres of a coarse grid sit on the corners of the finer one, and would put
+  // coarse points a third of a fine spacing from fine ones.
+  auto locate = [&](const Position& p, double& distance) {
+    std::size_t cell = 0;
+    distance = 0.0;
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double local = (p[a] - box.min[a]) * inverse_step;
+      const double index = std::clamp(std::floor(local), 0.0, double{kSamplingGrid - 1});
+      const double offset = local - index;
+      distance += offset * offset;
+      cell = cell * kSamplingGrid + static_cast<std::size_t>(index);
+    }
+    return cell;
+  };
+
+  touched_.clear();
+  double distance = 0.0;
+  for (const Position& p : coarser) {
+    const std::size_t cell = locate(p, distance);
+    if (best_index_[cell] == kEmpty) touched_.push_back(static_cast<std::uint32_t>(cell));
+    best_index_[cell] = kTaken;
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::size_t cell = locate({points[i].x, points[i].y, points[i].z}, distance);
+    const auto d = static_cast<float>(distance);
+    const std::uint32_t best = best_index_[cell];
+    if (best == kTaken) continue;
+    if (best == kEmpty) {
+      touched_.push_back(static_cast<std::uint32_t>(cell));
+    } else if (!(d < best_distance_[cell])) {
+      continue;
+    }
+    best_index_[cell] = static_cast<std::uint32_t>(i);
+    best_distance_[cell] = d;
+  }
+  selected_.assign(points.size(), 0);
+  for (std::uint32_t cell : touched_) {
+    if (best_index_[cell] != kTaken) selected_[best_index_[cell]] = 1;
+    best_index_[cell] = kEmpty;  // leave the scratch clean for the next node
+  }
+  // Two-pointer partition carrying the flags along with the points.
+  std::size_t front = 0, back = points.size();
+  while (front < back) {
+    if (selected_[front]) {
+      ++front;
+    } else {
+      --back;
+      std::swap(points[front], points[back]);
+      std::swap(selected_[front], selected_[back]);
+    }
+  }
+  return front;
+}
+
+int NodeIndexer::octantOf(const CellKey& key, const Position& p) const {
+  // The same rule as Cube::cellAt at the child level, so a point's child is the cell it lies in.
+  const CellKey first = key.child(0);
+  const CellKey cell = cube_.cellAt(p, first.level);
+  return static_cast<int>((cell.x - first.x) | ((cell.y - first.y) << 1) | ((cell.z - first.z) << 2));
+}
+
+std::array<std::vector<Position>, 8> NodeIndexer::coarserForChildren(const CellKey& key,
+                                                                     std::span<const Position> coarser,
+                                                                     std::span<const BuildPoint> selected) const {
+  std::array<std::vector<Position>, 8> result;
+  for (const Position& p : coarser) result[static_cast<std::size_t>(octantOf(key, p))].push_back(p);
+  for (const BuildPoint& b : selected) {
+    const Position p{b.x, b.y, b.z};
+    result[static_cast<std::size_t>(octantOf(key, p))].push_back(p);
+  }
+  return result;
+}
+
+std::array<std::size_t, 9> NodeIndexer::splitByOctant(const CellKey& key, std::span<BuildPoint> points) const {
+  auto octant = [&](const BuildPoint& p) { return octantOf(key, {p.x, p.y, p.z}); };
+  std::array<std::size_t, 9> bounds{};
+  std::array<std::size_t, 8> counts{};
+  for (const BuildPoint& p : points) ++counts[static_cast<std::size_t>(octant(p))];
+  for (std::size_t o = 0; o < 8; ++o) bounds[o + 1] = bounds[o] + counts[o];
+  // In-place cycle sort into the eight ranges (American flag sort, one pass).
+  std::array<std::size_t, 8> next{};
+  for (std::size_t o = 0; o < 8; ++o) next[o] = bounds[o];
+  for (std::size_t o = 0; o < 8; ++o) {
+    while (next[o] < bounds[o + 1]) {
+      const auto target = static_cast<std::size_t>(octant(points[next[o]]));
+      if (target == o) {
+        ++next[o];
+      } else {
+        std::swap(points[next[o]], points[next[target]++]);
+      }
+    }
+  }
+  return bounds;
+}
+
+bool NodeIndexer::indexSubtree(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
+                               const NodeSink& sink) {
+  if (points.empty()) return false;
+  if (isLeaf(key, points.size())) {
+    sink(key, points, 0);
+    return true;
+  }
+  const std::size_t kept = selectSubsample(key, points, coarser);
+  const std::span<BuildPoint> rest = points.subspan(kept);
+  const auto bounds = splitByOctant(key, rest);
+  const auto child_coarser = coarserForChildren(key, coarser, points.first(kept));
+  std::uint8_t mask = 0;
+  for (int o = 0; o < 8; ++o) {
+    const auto index = static_cast<std::size_t>(o);
+    const auto range = rest.subspan(bounds[index], bounds[index + 1] - bounds[index]);
+    if (indexSubtree(key.child(o), range, child_coarser[index], sink))
+      mask = static_cast<std::uint8_t>(mask | (1u << o));
+  }
+  sink(key, points.first(kept), mask);
+  return true;
+}
+
+StopSet::StopSet(const std::vector<CellKey>& roots) : stops(roots.begin(), roots.end()) {
+  for (const CellKey& root : roots) {
+    for (auto parent = root.parent(); parent; parent = parent->parent()) {
+      if (!ancestors.insert(*parent).second) break;  // the rest of the path is in already
+    }
+  }
+}
+
+bool NodeIndexer::indexAbove(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
+                             const StopSet& stops, const StopSink& stop_sink, const NodeSink& sink) {
+  if (stops.stops.contains(key)) return stop_sink(key, points);
+  if (!stops.ancestors.contains(key)) {
+    assert(points.empty() && "points outside every indexed subtree");
+    return false;
+  }
+  const std::size_t kept = selectSubsample(key, points, coarser);
+  const std::span<BuildPoint> rest = points.subspan(kept);
+  const auto bounds = splitByOctant(key, rest);
+  const auto child_coarser = coarserForChildren(key, coarser, points.first(kept));
+  std::uint8_t mask = 0;
+  for (int o = 0; o < 8; ++o) {
+    const auto index = static_cast<std::size_t>(o);
+    const auto range = rest.subspan(bounds[index], bounds[index + 1] - bounds[index]);
+    if (indexAbove(key.child(o), range, child_coarser[index], stops, stop_sink, sink)) {
+      mask = static_cast<std::uint8_t>(mask | (1u << o));
+    }
+  }
+  if (kept == 0 && mask == 0) return false;  // everything below was taken further up
+  sink(key, points.first(kept), mask);
+  return true;
+}
+
+}  // namespace plumb::lod

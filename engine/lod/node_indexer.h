@@ -1,0 +1,80 @@
+#pragma once
+// Turns the points of one cell into that cell's subtree of octree nodes (paper section 3.1):
+// an inner node keeps a grid subsample of its points, at most one point per cell of a 128^3
+// grid over the node (the point nearest that grid cell's lower corner), and hands the rest to its
+// children; a node with at most leaf_max_points points (or too small to split) is a leaf and
+// keeps them all. Grid cells that already hold a point of a coarser level take no new one, so
+// the points of levels 0..L together have one point per grid cell of level L: a near-uniform
+// spacing of cube size / 128 / 2^L. Every input point is kept exactly once.
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <unordered_set>
+#include <vector>
+
+#include "engine/lod/cube.h"
+
+namespace plumb::lod {
+
+// A point while the octree is built: absolute coordinates and attributes, 32 bytes.
+struct BuildPoint {
+  double x, y, z;
+  std::array<std::uint16_t, 3> rgb;
+  std::uint16_t intensity;
+};
+static_assert(sizeof(BuildPoint) == 32);
+
+using Position = std::array<double, 3>;
+
+// Receives each finished node: its key, its own points and which children exist. Nodes arrive
+// children first. May be called from several threads at once when several indexers run.
+using NodeSink = std::function<void(const CellKey& key, std::span<const BuildPoint> points, std::uint8_t child_mask)>;
+
+// The roots of already indexed subtrees, and every cell above them.
+struct StopSet {
+  explicit StopSet(const std::vector<CellKey>& roots);
+  std::unordered_set<CellKey, CellKeyHash> stops;
+  std::unordered_set<CellKey, CellKeyHash> ancestors;
+};
+
+class NodeIndexer {
+ public:
+  NodeIndexer(const Cube& cube, std::uint32_t leaf_max_points);
+
+  // Builds the subtree of `key` from `points` (all inside the cell; reordered in place).
+  // `coarser` are the points that levels above this cell keep inside it. Returns whether the
+  // node exists (false only for no points at all).
+  bool indexSubtree(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
+                    const NodeSink& sink);
+
+  // Builds the nodes above already indexed subtrees (the stops): `points` are the points the
+  // stops' roots hold. Each stop is handed back through `stop_sink` with the points the levels
+  // above did not take (possibly none); it returns whether the stop's node exists. Nodes here
+  // are never leaves, and exist (perhaps without points) whenever a stop lies below them.
+  using StopSink = std::function<bool(const CellKey& stop, std::span<const BuildPoint> remaining)>;
+  bool indexAbove(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
+                  const StopSet& stops, const StopSink& stop_sink, const NodeSink& sink);
+
+ private:
+  // Moves the grid subsample of `points` to its front and returns its size; grid cells holding
+  // a `coarser` point take none.
+  std::size_t selectSubsample(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser);
+  // The coarser points of each child: `coarser` and the node's own selection, by octant.
+  std::array<std::vector<Position>, 8> coarserForChildren(const CellKey& key, std::span<const Position> coarser,
+                                                          std::span<const BuildPoint> selected) const;
+  int octantOf(const CellKey& key, const Position& p) const;
+  // Reorders points by child octant; returns the 9 range boundaries.
+  std::array<std::size_t, 9> splitByOctant(const CellKey& key, std::span<BuildPoint> points) const;
+  bool isLeaf(const CellKey& key, std::size_t count) const;
+
+  Cube cube_;
+  std::uint32_t leaf_max_points_;
+  // Scratch for selectSubsample, reused across nodes: per grid cell the best point so far.
+  std::vector<std::uint32_t> best_index_;
+  std::vector<float> best_distance_;
+  std::vector<std::uint32_t> touched_;
+  std::vector<std::uint8_t> selected_;
+};
+
+}  // namespace plumb::lod

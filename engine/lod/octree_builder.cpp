@@ -1,0 +1,464 @@
+#include "engine/lod/octree_builder.h"
+
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+#include <unordered_map>
+
+#include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
+#include "engine/lod/node_indexer.h"
+#include "engine/lod/octree_format.h"
+
+namespace plumb::lod {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kReadBatchPoints = std::size_t{1} << 18;
+// The counting grid: 128^3 cells, level 7.
+constexpr std::uint32_t kCountLevel = 7;
+constexpr std::size_t kCountCells = std::size_t{1} << (3 * kCountLevel);
+// Bytes a point costs while its chunk is indexed: the point, the partition flag, slack for
+// vector growth. The indexer's own scratch (16 MB per thread) comes on top.
+constexpr std::size_t kIndexBytesPerPoint = 48;
+constexpr std::size_t kIndexerScratchBytes = std::size_t{24} << 20;
+constexpr std::size_t kChunkBufferPoints = 8192;  // 256 KB of buffered writes per chunk
+// Smaller chunks than this are not worth a task of their own.
+constexpr std::uint64_t kMinChunkPoints = 1 << 20;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::size_t flatCell(const CellKey& key) {
+  return (std::size_t{key.z} << (2 * key.level)) | (std::size_t{key.y} << key.level) | key.x;
+}
+
+// A temporary file of BuildPoints, unlinked at once: it vanishes with its descriptor.
+class ChunkFile {
+ public:
+  ChunkFile(const std::string& output, const CellKey& key) : key_(key) {
+    static std::atomic<unsigned> counter{0};
+    const std::string name = output + ".chunk-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    fd_ = ::open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd_ < 0) throw fileError(name, "cannot create a temporary file (" + systemErrorText(errno) + ")");
+    ::unlink(name.c_str());
+    buffer_.reserve(kChunkBufferPoints);
+  }
+  ~ChunkFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  ChunkFile(const ChunkFile&) = delete;
+  ChunkFile& operator=(const ChunkFile&) = delete;
+
+  const CellKey& key() const { return key_; }
+  std::uint64_t count() const { return written_ + buffer_.size(); }
+
+  void add(const BuildPoint& point) {
+    buffer_.push_back(point);
+    if (buffer_.size() == kChunkBufferPoints) flush();
+  }
+
+  void flush() {
+    const auto* data = reinterpret_cast<const char*>(buffer_.data());
+    std::size_t left = buffer_.size() * sizeof(BuildPoint);
+    off_t at = static_cast<off_t>(written_ * sizeof(BuildPoint));
+    while (left > 0) {
+      const ssize_t done = ::pwrite(fd_, data, left, at);
+      if (done < 0 && errno == EINTR) continue;
+      if (done < 0)
+        throw Error("cannot write a temporary chunk (" + systemErrorText(errno) + "); free some disk space");
+      data += done;
+      left -= static_cast<std::size_t>(done);
+      at += done;
+    }
+    written_ += buffer_.size();
+    buffer_.clear();
+  }
+
+  // Points [first, first + out.size()) of the flushed file.
+  void read(std::uint64_t first, std::span<BuildPoint> out) const {
+    auto* data = reinterpret_cast<char*>(out.data());
+    std::size_t left = out.size_bytes();
+    off_t at = static_cast<off_t>(first * sizeof(BuildPoint));
+    while (left > 0) {
+      const ssize_t done = ::pread(fd_, data, left, at);
+      if (done < 0 && errno == EINTR) continue;
+      if (done <= 0) throw Error("cannot read back a temporary chunk (" + systemErrorText(errno) + ")");
+      data += done;
+      left -= static_cast<std::size_t>(done);
+      at += done;
+    }
+  }
+
+ private:
+  CellKey key_;
+  int fd_ = -1;
+  std::vector<BuildPoint> buffer_;
+  std::uint64_t written_ = 0;
+};
+
+// Many chunks each hold a descriptor: lift the soft limit to the hard one.
+void raiseFileLimit() {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_NOFILE, &limit) == 0 && limit.rlim_cur < limit.rlim_max) {
+    limit.rlim_cur = limit.rlim_max;
+    ::setrlimit(RLIMIT_NOFILE, &limit);
+  }
+}
+
+class Builder {
+ public:
+  explicit Builder(const BuildOptions& options) : options_(options) {
+    if (options.sources.empty()) throw Error("no input files");
+    budget_bytes_ = options.memory_mb << 20;
+  }
+
+  BuildReport run() {
+    raiseFileLimit();
+    auto start = Clock::now();
+    scanBounds();
+    report_.seconds_bounds = secondsSince(start);
+
+    start = Clock::now();
+    const std::vector<std::uint64_t> counts = countCells();
+    report_.seconds_counting = secondsSince(start);
+
+    start = Clock::now();
+    chooseChunks(counts);
+    distribute();
+    splitOversizedChunks();
+    report_.seconds_distributing = secondsSince(start);
+
+    start = Clock::now();
+    AtomicFile output(options_.output);
+    output_ = &output;
+    const std::array<std::byte, kHeaderBytes> placeholder{};
+    output.write(placeholder.data(), placeholder.size());
+    indexChunks();
+    indexTopLevels();
+    finish(output);
+    report_.seconds_indexing = secondsSince(start);
+    return report_;
+  }
+
+ private:
+  template <typename Visit>
+  void forEachPoint(std::string_view phase, Visit&& visit) {
+    io::PointBatch batch;
+    std::uint64_t done = 0;
+    for (const BuildSource& source : options_.sources) {
+      const auto reader = source.open();
+      while (reader->read(batch, kReadBatchPoints)) {
+        for (const io::PointRecord& p : batch.points) visit(p);
+        done += batch.size();
+        if (options_.progress) options_.progress(phase, done, header_.point_count);
+      }
+    }
+  }
+
+  void scanBounds() {
+    Box3& b = header_.bounds;
+    b.min.fill(INFINITY);
+    b.max.fill(-INFINITY);
+    io::PointBatch batch;
+    std::uint64_t count = 0;
+    for (const BuildSource& source : options_.sources) {
+      const auto reader = source.open();
+      while (reader->read(batch, kReadBatchPoints)) {
+        for (const io::PointRecord& p : batch.points) {
+          const double xyz[3] = {p.x, p.y, p.z};
+          for (std::size_t a = 0; a < 3; ++a) {
+            b.min[a] = std::min(b.min[a], xyz[a]);
+            b.max[a] = std::max(b.max[a], xyz[a]);
+          }
+        }
+        count += batch.size();
+        if (options_.progress) options_.progress("reading bounds", count, 0);
+      }
+      header_.skipped_non_finite += reader->counts().non_finite;
+      if (reader->info().attributes.colour) header_.attributes |= kHasColour;
+      if (reader->info().attributes.intensity) header_.attributes |= kHasIntensity;
+      for (const std::string& field : reader->info().ignored_fields) {
+        report_.ignored_fields.push_back(source.name + ": " + field);
+      }
+    }
+    if (count == 0)
+      throw Error("the input holds no points" +
+                  std::string(header_.skipped_non_finite > 0 ? " with finite coordinates" : ""));
+    header_.point_count = count;
+    header_.input_files = static_cast<std::uint32_t>(options_.sources.size());
+
+    // A cube a hair larger than the bounds, so the farthest points stay inside.
+    double extent = 0.0;
+    for (std::size_t a = 0; a < 3; ++a) extent = std::max(extent, b.max[a] - b.min[a]);
+    header_.cube.size = extent > 0.0 ? extent * (1.0 + 1e-6) + 1e-6 : 1.0;
+    for (std::size_t a = 0; a < 3; ++a) header_.cube.origin[a] = 0.5 * (b.min[a] + b.max[a]) - 0.5 * header_.cube.size;
+    header_.root_spacing = header_.cube.size / kSamplingGrid;
+    header_.sampling_grid = kSamplingGrid;
+    header_.leaf_max_points = options_.leaf_max_points;
+  }
+
+  std::vector<std::uint64_t> countCells() {
+    std::vector<std::uint64_t> counts(kCountCells, 0);
+    std::uint64_t seen = 0;
+    forEachPoint("counting", [&](const io::PointRecord& p) {
+      ++counts[flatCell(header_.cube.cellAt({p.x, p.y, p.z}, kCountLevel))];
+      ++seen;
+    });
+    // The inputs changed between passes, or a reader is not deterministic.
+    if (seen != header_.point_count) throw Error("an input changed while it was being read; run the import again");
+    return counts;
+  }
+
+  // The largest chunk that threads can index side by side within the budget.
+  std::uint64_t chunkLimit() const {
+    const unsigned threads =
+        options_.threads > 0 ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t per_thread = budget_bytes_ / threads;
+    const std::size_t usable = per_thread > kIndexerScratchBytes ? per_thread - kIndexerScratchBytes : per_thread / 2;
+    const std::uint64_t by_memory = usable / kIndexBytesPerPoint;
+    // Enough chunks to keep every thread busy; a chunk is indexed by one thread.
+    const std::uint64_t by_balance = std::max<std::uint64_t>(header_.point_count / (4 * threads), kMinChunkPoints);
+    return std::max<std::uint64_t>(std::min(by_memory, by_balance), 4 * std::uint64_t{options_.leaf_max_points});
+  }
+
+  void chooseChunks(const std::vector<std::uint64_t>& counts) {
+    // Counts per level, from the counting grid up to the root.
+    std::vector<std::vector<std::uint64_t>> pyramid(kCountLevel + 1);
+    pyramid[kCountLevel] = counts;
+    for (std::uint32_t level = kCountLevel; level > 0; --level) {
+      pyramid[level - 1].assign(std::size_t{1} << (3 * (level - 1)), 0);
+      const std::uint32_t n = 1u << level;
+      for (std::uint32_t z = 0; z < n; ++z) {
+        for (std::uint32_t y = 0; y < n; ++y) {
+          for (std::uint32_t x = 0; x < n; ++x) {
+            const CellKey key{level, x, y, z};
+            pyramid[level - 1][flatCell(*key.parent())] += pyramid[level][flatCell(key)];
+          }
+        }
+      }
+    }
+    const std::uint64_t limit = chunkLimit();
+    chunk_of_cell_.assign(kCountCells, 0);
+    std::vector<CellKey> pending{CellKey{}};
+    while (!pending.empty()) {
+      const CellKey key = pending.back();
+      pending.pop_back();
+      const std::uint64_t count = pyramid[key.level][flatCell(key)];
+      if (count == 0) continue;
+      if (count > limit && key.level < kCountLevel) {
+        for (const CellKey& child : key.children()) pending.push_back(child);
+        continue;
+      }
+      // Every counting cell inside this chunk maps to it.
+      const std::uint32_t shift = kCountLevel - key.level;
+      const std::uint32_t span = 1u << shift;
+      for (std::uint32_t z = 0; z < span; ++z) {
+        for (std::uint32_t y = 0; y < span; ++y) {
+          for (std::uint32_t x = 0; x < span; ++x) {
+            const CellKey cell{kCountLevel, (key.x << shift) + x, (key.y << shift) + y, (key.z << shift) + z};
+            chunk_of_cell_[flatCell(cell)] = static_cast<std::uint32_t>(chunks_.size());
+          }
+        }
+      }
+      chunks_.push_back(std::make_unique<ChunkFile>(options_.output, key));
+    }
+  }
+
+  void distribute() {
+    forEachPoint("distributing", [&](const io::PointRecord& p) {
+      const std::uint32_t chunk = chunk_of_cell_[flatCell(header_.cube.cellAt({p.x, p.y, p.z}, kCountLevel))];
+      chunks_[chunk]->add({p.x, p.y, p.z, p.rgb, p.intensity});
+    });
+    for (auto& chunk : chunks_) chunk->flush();
+    chunk_of_cell_ = {};
+  }
+
+  // A counting cell denser than the chunk limit is split into its children by streaming its
+  // file through, as often as needed.
+  void splitOversizedChunks() {
+    const std::uint64_t limit = chunkLimit();
+    std::vector<std::unique_ptr<ChunkFile>> done;
+    std::vector<BuildPoint> piece(kChunkBufferPoints * 16);
+    while (!chunks_.empty()) {
+      std::unique_ptr<ChunkFile> chunk = std::move(chunks_.back());
+      chunks_.pop_back();
+      if (chunk->count() <= limit || chunk->key().level >= kMaxLevel ||
+          header_.cube.cellSize(chunk->key().level) < 1e-3) {
+        done.push_back(std::move(chunk));
+        continue;
+      }
+      std::array<std::unique_ptr<ChunkFile>, 8> children;
+      for (int o = 0; o < 8; ++o)
+        children[static_cast<std::size_t>(o)] = std::make_unique<ChunkFile>(options_.output, chunk->key().child(o));
+      for (std::uint64_t first = 0; first < chunk->count(); first += piece.size()) {
+        const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(piece.size(), chunk->count() - first));
+        chunk->read(first, std::span(piece).first(n));
+        for (std::size_t i = 0; i < n; ++i) {
+          const CellKey cell = header_.cube.cellAt({piece[i].x, piece[i].y, piece[i].z}, chunk->key().level + 1);
+          children[static_cast<std::size_t>(cell.octant())]->add(piece[i]);
+        }
+      }
+      for (auto& child : children) {
+        child->flush();
+        if (child->count() > 0) chunks_.push_back(std::move(child));
+      }
+    }
+    chunks_ = std::move(done);
+    std::sort(chunks_.begin(), chunks_.end(), [](const auto& a, const auto& b) { return a->count() > b->count(); });
+    for (const auto& chunk : chunks_) keys_.push_back(chunk->key());
+    report_.chunks = chunks_.size();
+    report_.largest_chunk_points = chunks_.empty() ? 0 : static_cast<std::size_t>(chunks_.front()->count());
+  }
+
+  void writeNode(const CellKey& key, std::span<const BuildPoint> points, std::uint8_t child_mask) {
+    const std::array<double, 3> origin = header_.cube.cellMin(key);
+    std::vector<std::byte> block(points.size() * kPointBytes);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const BuildPoint& p = points[i];
+      encodePoint({static_cast<float>(p.x - origin[0]), static_cast<float>(p.y - origin[1]),
+                   static_cast<float>(p.z - origin[2]), p.rgb, p.intensity},
+                  block.data() + i * kPointBytes);
+    }
+    NodeInfo node{key, static_cast<std::uint32_t>(points.size()), crc32Of(block), 0, child_mask};
+    const std::lock_guard lock(output_mutex_);
+    node.offset = output_->size();
+    output_->write(block);
+    nodes_.push_back(node);
+    indexed_points_ += points.size();
+    if (options_.progress) options_.progress("indexing", indexed_points_, header_.point_count);
+  }
+
+  void indexChunks() {
+    const std::uint64_t largest = report_.largest_chunk_points;
+    const std::size_t per_thread = largest * kIndexBytesPerPoint + kIndexerScratchBytes;
+    const unsigned cores = options_.threads > 0 ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads =
+        static_cast<unsigned>(std::clamp<std::size_t>(budget_bytes_ / std::max<std::size_t>(per_thread, 1), 1, cores));
+    report_.index_threads = threads;
+    roots_.resize(chunks_.size());
+
+    // One indexer (and its 16 MB of scratch) per worker thread of this build.
+    tbb::enumerable_thread_specific<NodeIndexer> indexers(header_.cube, options_.leaf_max_points);
+    tbb::task_arena arena(static_cast<int>(threads));
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, chunks_.size(), [&](std::size_t c) {
+        NodeIndexer& indexer = indexers.local();
+        ChunkFile& chunk = *chunks_[c];
+        std::vector<BuildPoint> points(static_cast<std::size_t>(chunk.count()));
+        chunk.read(0, points);
+        chunks_[c].reset();  // close the temporary file: its disk space is free from here on
+        indexer.indexSubtree(keys_[c], points, {},
+                             [&](const CellKey& key, std::span<const BuildPoint> node_points, std::uint8_t mask) {
+                               if (key == keys_[c]) {
+                                 roots_[c] = {std::vector<BuildPoint>(node_points.begin(), node_points.end()), mask};
+                               } else {
+                                 writeNode(key, node_points, mask);
+                               }
+                             });
+      });
+    });
+  }
+
+  void indexTopLevels() {
+    if (keys_.size() == 1 && keys_[0].level == 0) {
+      writeNode(keys_[0], roots_[0].points, roots_[0].child_mask);
+      return;
+    }
+    std::unordered_map<CellKey, std::size_t, CellKeyHash> chunk_by_key;
+    std::vector<BuildPoint> points;
+    for (std::size_t c = 0; c < keys_.size(); ++c) {
+      chunk_by_key.emplace(keys_[c], c);
+      points.insert(points.end(), roots_[c].points.begin(), roots_[c].points.end());
+      roots_[c].points = {};
+    }
+    const StopSet stops(keys_);
+    NodeIndexer indexer(header_.cube, options_.leaf_max_points);
+    indexer.indexAbove(
+        CellKey{}, points, {}, stops,
+        [&](const CellKey& key, std::span<const BuildPoint> remaining) {
+          const std::uint8_t mask = roots_[chunk_by_key.at(key)].child_mask;
+          if (remaining.empty() && mask == 0) return false;
+          writeNode(key, remaining, mask);
+          return true;
+        },
+        [&](const CellKey& key, std::span<const BuildPoint> node_points, std::uint8_t mask) {
+          writeNode(key, node_points, mask);
+        });
+  }
+
+  void finish(AtomicFile& output) {
+    if (indexed_points_ != header_.point_count) {
+      throw Error("internal error: indexed " + std::to_string(indexed_points_) + " of " +
+                  std::to_string(header_.point_count) + " points");
+    }
+    std::sort(nodes_.begin(), nodes_.end(), [](const NodeInfo& a, const NodeInfo& b) {
+      return std::tie(a.key.level, a.key.z, a.key.y, a.key.x) < std::tie(b.key.level, b.key.z, b.key.y, b.key.x);
+    });
+    std::vector<std::byte> index(nodes_.size() * kIndexEntryBytes);
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+      encodeIndexEntry(nodes_[i], index.data() + i * kIndexEntryBytes);
+      header_.depth = std::max(header_.depth, nodes_[i].key.level);
+    }
+    header_.node_count = nodes_.size();
+    header_.index_offset = output.size();
+    header_.index_bytes = index.size();
+    header_.index_crc = crc32Of(index);
+    output.write(index);
+    output.overwrite(0, encodeHeader(header_));
+    output.commit();
+
+    report_.points = header_.point_count;
+    report_.skipped_non_finite = header_.skipped_non_finite;
+    report_.nodes = nodes_.size();
+    report_.depth = header_.depth;
+    report_.file_bytes = header_.index_offset + header_.index_bytes;
+  }
+
+  struct ChunkRoot {
+    std::vector<BuildPoint> points;
+    std::uint8_t child_mask = 0;
+  };
+
+  const BuildOptions& options_;
+  std::size_t budget_bytes_ = 0;
+  OctreeHeader header_;
+  BuildReport report_;
+  std::vector<std::uint32_t> chunk_of_cell_;
+  std::vector<std::unique_ptr<ChunkFile>> chunks_;
+  std::vector<CellKey> keys_;  // of each chunk, kept after its file is closed
+  std::vector<ChunkRoot> roots_;
+  AtomicFile* output_ = nullptr;
+  std::mutex output_mutex_;
+  std::vector<NodeInfo> nodes_;
+  std::uint64_t indexed_points_ = 0;
+};
+
+}  // namespace
+
+std::vector<BuildSource> fileSources(const std::vector<std::string>& paths, const io::ReaderOptions& options) {
+  std::vector<BuildSource> sources;
+  for (const std::string& path : paths) {
+    sources.push_back({path, [path, options] { return io::openPointCloud(path, options); }});
+  }
+  return sources;
+}
+
+BuildReport buildOctree(const BuildOptions& options) {
+  return Builder(options).run();
+}
+
+}  // namespace plumb::lod

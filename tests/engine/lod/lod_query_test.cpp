@@ -1,0 +1,116 @@
+#include "engine/lod/lod_query.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "engine/lod/octree_builder.h"
+#include "tests/support/generated_cloud.h"
+#include "tests/support/temp_directory.h"
+
+namespace plumb::lod {
+namespace {
+
+// A floor of `side` x `side` metres at 100 points per square metre, with a low step in it.
+std::shared_ptr<const Octree> buildFloor(const test::TempDirectory& dir, const std::string& name, double side) {
+  const auto count = static_cast<std::uint64_t>(side * side * 100.0);
+  BuildOptions options;
+  options.sources = {test::generatedSource(count, [side](std::uint64_t i) {
+    const double x = side * test::unitHash(i, 1), y = side * test::unitHash(i, 2);
+    return test::withId(512000.0 + x, 5403000.0 + y, 250.0 + (x < 1.0 ? 0.2 : 0.0), i);
+  })};
+  options.output = dir.file(name);
+  options.memory_mb = 128;
+  options.leaf_max_points = 1000;
+  buildOctree(options);
+  return Octree::open(options.output);
+}
+
+TEST(LodQuery, NodesInSphereMatchBruteForce) {
+  test::TempDirectory dir;
+  const auto octree = buildFloor(dir, "floor.plumb", 30.0);
+  const std::array<double, 3> centre{512012.3, 5403007.7, 250.4};
+  for (std::uint32_t level = 0; level <= octree->header().depth; ++level) {
+    for (double radius : {0.3, 1.0, 4.0}) {
+      std::set<CellKey> expected;
+      for (const NodeInfo& node : octree->nodes()) {
+        if (node.key.level <= level && octree->cube().squaredDistance(node.key, centre) <= radius * radius) {
+          expected.insert(node.key);
+        }
+      }
+      std::set<CellKey> found;
+      for (const NodeInfo* node : nodesInSphere(*octree, centre, radius, level)) found.insert(node->key);
+      EXPECT_EQ(found, expected) << "level " << level << " radius " << radius;
+
+      std::set<CellKey> at_level;
+      for (const CellKey& key : expected) {
+        if (key.level == level) at_level.insert(key);
+      }
+      const auto cells = cellsInSphere(*octree, centre, radius, level);
+      EXPECT_EQ(std::set<CellKey>(cells.begin(), cells.end()), at_level);
+    }
+  }
+}
+
+TEST(LodQuery, CellsByDistanceAreNearestFirst) {
+  test::TempDirectory dir;
+  const auto octree = buildFloor(dir, "floor.plumb", 30.0);
+  const std::array<double, 3> point{512003.0, 5403020.0, 250.0};
+  const auto cells = cellsByDistance(*octree, point, 8.0, octree->header().depth);
+  ASSERT_GT(cells.size(), 3u);
+  for (std::size_t i = 1; i < cells.size(); ++i) {
+    EXPECT_LE(octree->cube().squaredDistance(cells[i - 1], point), octree->cube().squaredDistance(cells[i], point));
+  }
+}
+
+TEST(LodQuery, ExistingNeighboursAreTheNeighbourCellsThatHoldNodes) {
+  test::TempDirectory dir;
+  const auto octree = buildFloor(dir, "floor.plumb", 30.0);
+  for (const NodeInfo& node : octree->nodes()) {
+    const auto found = existingNeighbours(*octree, node.key);
+    for (const CellKey& key : found) EXPECT_NE(octree->find(key), nullptr);
+    std::size_t expected = 0;
+    for (const NodeInfo& other : octree->nodes()) {
+      const auto gap = [](std::uint32_t a, std::uint32_t b) { return a > b ? a - b : b - a; };
+      if (other.key.level == node.key.level && other.key != node.key && gap(other.key.x, node.key.x) <= 1 &&
+          gap(other.key.y, node.key.y) <= 1 && gap(other.key.z, node.key.z) <= 1) {
+        ++expected;
+      }
+    }
+    EXPECT_EQ(found.size(), expected);
+  }
+}
+
+// The locality promise: a query's cost follows the region, not the cloud. Two floors of equal
+// density, one with 64 times the area and points; the same 1 m query at the same spacing looks
+// at as many nodes in both, but for the three levels the larger tree has on top (8^3 = 64):
+// one or two nodes more per extra level on the path down, nothing that grows with the cloud.
+TEST(LodQuery, LocalQueryCostDoesNotGrowWithTheCloud) {
+  test::TempDirectory dir;
+  const auto small = buildFloor(dir, "small.plumb", 16.0);
+  const auto large = buildFloor(dir, "large.plumb", 128.0);
+  ASSERT_GE(large->header().point_count, 60 * small->header().point_count);
+  ASSERT_GT(large->nodes().size(), 20 * small->nodes().size());
+
+  const double spacing = 0.1;
+  const std::array<double, 3> centre{512008.0, 5403008.0, 250.0};
+  QueryStats small_stats, large_stats;
+  const auto small_nodes = nodesInSphere(*small, centre, 1.0, small->levelForSpacing(spacing), &small_stats);
+  const auto large_nodes = nodesInSphere(*large, centre, 1.0, large->levelForSpacing(spacing), &large_stats);
+  RecordProperty("small_nodes_visited", std::to_string(small_stats.nodes_visited));
+  RecordProperty("large_nodes_visited", std::to_string(large_stats.nodes_visited));
+  constexpr std::uint64_t kExtraLevels = 3;
+  EXPECT_LE(large_nodes.size(), small_nodes.size() + 2 * kExtraLevels)
+      << "small " << small_nodes.size() << ", large " << large_nodes.size();
+  EXPECT_LE(large_stats.nodes_visited, small_stats.nodes_visited + 8 * kExtraLevels)
+      << "small " << small_stats.nodes_visited << ", large " << large_stats.nodes_visited;
+  std::printf(
+      "1 m query at %.3f m spacing: %zu nodes (%llu visited) of %zu in the small cloud, %zu (%llu) of %zu in "
+      "the large one\n",
+      spacing, small_nodes.size(), static_cast<unsigned long long>(small_stats.nodes_visited), small->nodes().size(),
+      large_nodes.size(), static_cast<unsigned long long>(large_stats.nodes_visited), large->nodes().size());
+}
+
+}  // namespace
+}  // namespace plumb::lod

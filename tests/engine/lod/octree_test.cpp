@@ -1,0 +1,271 @@
+// Building, reading and checking octrees.
+
+#include "engine/lod/octree.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <unordered_map>
+
+#include "engine/core/error.h"
+#include "engine/lod/octree_builder.h"
+#include "tests/support/generated_cloud.h"
+#include "tests/support/temp_directory.h"
+
+namespace plumb::lod {
+namespace {
+
+// A room-like cloud at UTM coordinates: a 20 x 12 m floor and a 20 x 3 m wall, jittered, each
+// point tagged with its index as id.
+io::PointRecord roomPoint(std::uint64_t i) {
+  const double u = test::unitHash(i, 1), v = test::unitHash(i, 2);
+  if (i % 4 == 0) return test::withId(512000.0 + 20.0 * u, 5403012.0, 250.0 + 3.0 * v, i);  // wall
+  return test::withId(512000.0 + 20.0 * u, 5403000.0 + 12.0 * v, 250.0 + 0.001 * test::unitHash(i, 3), i);
+}
+
+struct Built {
+  BuildReport report;
+  std::shared_ptr<const Octree> octree;
+};
+
+Built build(const test::TempDirectory& dir, std::vector<BuildSource> sources, std::size_t memory_mb = 256,
+            std::uint32_t leaf_max = 2000) {
+  BuildOptions options;
+  options.sources = std::move(sources);
+  options.output = dir.file("cloud.plumb");
+  options.memory_mb = memory_mb;
+  options.leaf_max_points = leaf_max;
+  Built built{buildOctree(options), nullptr};
+  built.octree = Octree::open(options.output);
+  return built;
+}
+
+// Every point, by id, with its position read back.
+std::unordered_map<std::uint64_t, std::array<double, 3>> pointsById(const Octree& octree) {
+  std::unordered_map<std::uint64_t, std::array<double, 3>> points;
+  for (const NodeInfo& node : octree.nodes()) {
+    const NodePoints loaded = octree.load(node);
+    for (std::size_t i = 0; i < loaded.size(); ++i) {
+      const auto id = test::idOf(loaded.points[i].rgb, loaded.points[i].intensity);
+      EXPECT_TRUE(points.emplace(id, loaded.position(i)).second) << "point " << id << " stored twice";
+    }
+  }
+  return points;
+}
+
+void expectEveryPointKeptToTheMillimetre(const Octree& octree, std::uint64_t count) {
+  const auto points = pointsById(octree);
+  ASSERT_EQ(points.size(), count);
+  double worst = 0.0;
+  for (const auto& [id, p] : points) {
+    const io::PointRecord truth = roomPoint(id);
+    worst = std::max({worst, std::abs(p[0] - truth.x), std::abs(p[1] - truth.y), std::abs(p[2] - truth.z)});
+  }
+  EXPECT_LT(worst, 1e-5) << "positions must keep far better than millimetres at UTM coordinates";
+}
+
+TEST(Octree, RoundTripKeepsEveryPointAndAttributeOnce) {
+  test::TempDirectory dir;
+  const Built built = build(dir, {test::generatedSource(200'000, roomPoint)});
+  EXPECT_EQ(built.report.points, 200'000u);
+  EXPECT_EQ(built.octree->header().point_count, 200'000u);
+  EXPECT_GT(built.octree->header().depth, 1u);
+  expectEveryPointKeptToTheMillimetre(*built.octree, 200'000);
+}
+
+TEST(Octree, ManySmallChunksGiveTheSamePoints) {
+  // 64 MiB forces many chunks and the levels above them to be built from the chunk roots.
+  test::TempDirectory dir;
+  const Built built = build(dir, {test::generatedSource(300'000, roomPoint)}, 64, 500);
+  EXPECT_GT(built.report.chunks, 4u);
+  expectEveryPointKeptToTheMillimetre(*built.octree, 300'000);
+}
+
+TEST(Octree, NodesFormOneHierarchy) {
+  test::TempDirectory dir;
+  const Built built = build(dir, {test::generatedSource(200'000, roomPoint)}, 64, 500);
+  const Octree& octree = *built.octree;
+  ASSERT_NE(octree.find(CellKey{}), nullptr);
+  std::uint64_t points = 0;
+  for (const NodeInfo& node : octree.nodes()) {
+    points += node.point_count;
+    if (node.key.level > 0) {
+      EXPECT_NE(octree.find(*node.key.parent()), nullptr) << "orphan node";
+    }
+    for (int o = 0; o < 8; ++o) {
+      EXPECT_EQ(((node.child_mask >> o) & 1) != 0, octree.find(node.key.child(o)) != nullptr);
+    }
+    if (node.child_mask == 0) {
+      EXPECT_GT(node.point_count, 0u) << "an empty leaf";
+    }
+    // Points lie in their node's cell.
+    const NodePoints loaded = octree.load(node);
+    const Box3 box = octree.cube().cellBox(node.key);
+    for (std::size_t i = 0; i < loaded.size(); ++i) {
+      const auto p = loaded.position(i);
+      for (std::size_t a = 0; a < 3; ++a) {
+        ASSERT_GE(p[a], box.min[a] - 1e-6);
+        ASSERT_LE(p[a], box.max[a] + 1e-6);
+      }
+    }
+  }
+  EXPECT_EQ(points, octree.header().point_count);
+}
+
+// Mean distance from each point to its nearest other point, on the floor (z near 250), within
+// the central 10 x 6 m.
+double meanNearestNeighbour(const std::vector<std::array<double, 3>>& points, double cell) {
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> grid;
+  auto key = [&](double x, double y) {
+    return (static_cast<std::int64_t>(std::floor(x / cell)) << 32) ^ static_cast<std::int64_t>(std::floor(y / cell));
+  };
+  for (std::size_t i = 0; i < points.size(); ++i) grid[key(points[i][0], points[i][1])].push_back(i);
+  double sum = 0.0;
+  int counted = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    if (p[0] < 512005 || p[0] > 512015 || p[1] < 5403003 || p[1] > 5403009) continue;
+    double best = INFINITY;
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto it = grid.find(key(p[0] + dx * cell, p[1] + dy * cell));
+        if (it == grid.end()) continue;
+        for (std::size_t j : it->second) {
+          if (j != i) best = std::min(best, std::hypot(points[j][0] - p[0], points[j][1] - p[1]));
+        }
+      }
+    }
+    if (std::isfinite(best)) {
+      sum += best;
+      ++counted;
+    }
+  }
+  return sum / counted;
+}
+
+TEST(Octree, SpacingHalvesWithEachLevel) {
+  test::TempDirectory dir;
+  const Built built = build(dir, {test::generatedSource(400'000, roomPoint)}, 256, 1000);
+  const Octree& octree = *built.octree;
+  std::vector<std::array<double, 3>> levels_so_far;
+  double previous = 0.0;
+  for (std::uint32_t level = 0; level <= 2; ++level) {
+    for (const NodeInfo& node : octree.nodes()) {
+      if (node.key.level != level) continue;
+      const NodePoints loaded = octree.load(node);
+      for (std::size_t i = 0; i < loaded.size(); ++i) {
+        if (loaded.position(i)[2] < 250.01) levels_so_far.push_back(loaded.position(i));
+      }
+    }
+    const double spacing = octree.spacing(level);
+    const double measured = meanNearestNeighbour(levels_so_far, 2.0 * spacing);
+    RecordProperty("level_" + std::to_string(level) + "_spacing_mm", std::to_string(measured * 1e3));
+    std::printf("level %u: nominal spacing %.4f m, mean nearest neighbour %.4f m, %zu points\n", level, spacing,
+                measured, levels_so_far.size());
+    EXPECT_GT(measured, 0.5 * spacing) << "level " << level;
+    EXPECT_LT(measured, 1.5 * spacing) << "level " << level;
+    if (level > 0) {
+      EXPECT_NEAR(measured / previous, 0.5, 0.1) << "level " << level;
+    }
+    previous = measured;
+  }
+}
+
+TEST(Octree, SeveralInputsMergeAndSkippedPointsAreCounted) {
+  test::TempDirectory dir;
+  auto second = [](std::uint64_t i) {
+    io::PointRecord p = roomPoint(1'000'000 + i);
+    if (i % 10 == 0) p.x = NAN;
+    return p;
+  };
+  const Built built = build(dir, {test::generatedSource(50'000, roomPoint), test::generatedSource(20'000, second)});
+  EXPECT_EQ(built.report.points, 50'000u + 18'000u);
+  EXPECT_EQ(built.octree->header().skipped_non_finite, 2'000u);
+  EXPECT_EQ(built.octree->header().input_files, 2u);
+}
+
+TEST(Octree, ASinglePointAndDuplicatesBuild) {
+  test::TempDirectory dir;
+  const Built one = build(dir, {test::generatedSource(1, roomPoint)});
+  EXPECT_EQ(one.octree->header().point_count, 1u);
+  const Built same = build(
+      dir,
+      {test::generatedSource(30'000, [](std::uint64_t i) { return test::withId(512000.5, 5403000.5, 250.5, i); })});
+  EXPECT_EQ(same.octree->header().point_count, 30'000u);
+  EXPECT_EQ(pointsById(*same.octree).size(), 30'000u);
+}
+
+TEST(Octree, NoPointsIsAnErrorAndLeavesNothing) {
+  test::TempDirectory dir;
+  BuildOptions options;
+  options.sources = {test::generatedSource(10, [](std::uint64_t) { return io::PointRecord{NAN, 0, 0, {}, 0}; })};
+  options.output = dir.file("empty.plumb");
+  EXPECT_THROW(buildOctree(options), Error);
+  EXPECT_EQ(dir.entryCount(), 0u);
+}
+
+class CorruptOctree : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    built_ = build(dir_, {test::generatedSource(20'000, roomPoint)});
+    path_ = dir_.file("cloud.plumb");
+    bytes_ = test::readFile(path_);
+  }
+  void rewrite(const std::string& bytes) {
+    built_.octree.reset();
+    std::ofstream(path_, std::ios::binary | std::ios::trunc)
+        .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  std::string openError() {
+    try {
+      const auto octree = Octree::open(path_);
+      for (const NodeInfo& node : octree->nodes()) octree->load(node);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "";
+  }
+
+  test::TempDirectory dir_;
+  Built built_;
+  std::string path_;
+  std::string bytes_;
+};
+
+TEST_F(CorruptOctree, AFlippedPointByteIsReportedAtItsNode) {
+  std::string bytes = bytes_;
+  bytes[kHeaderBytes + 5] ^= 0x10;
+  rewrite(bytes);
+  const std::string message = openError();
+  EXPECT_NE(message.find("corrupt (checksum mismatch)"), std::string::npos) << message;
+  EXPECT_NE(message.find(path_), std::string::npos) << message;
+}
+
+TEST_F(CorruptOctree, HeaderIndexTruncationAndVersionAreChecked) {
+  std::string header = bytes_;
+  header[40] ^= 0x01;
+  rewrite(header);
+  EXPECT_NE(openError().find("header is corrupt"), std::string::npos) << openError();
+
+  std::string index = bytes_;
+  index[index.size() - 3] ^= 0x01;
+  rewrite(index);
+  EXPECT_NE(openError().find("index is corrupt"), std::string::npos) << openError();
+
+  rewrite(bytes_.substr(0, bytes_.size() - 100));
+  EXPECT_NE(openError().find("outside the file"), std::string::npos) << openError();
+
+  std::string newer = bytes_;
+  newer[8] = 9;
+  rewrite(newer);
+  EXPECT_NE(openError().find("newer than this Plumb"), std::string::npos) << openError();
+
+  rewrite("PLY\n");
+  EXPECT_NE(openError().find("shorter than an octree header"), std::string::npos) << openError();
+  rewrite(std::string(300, 'x'));
+  EXPECT_NE(openError().find("not a Plumb octree"), std::string::npos) << openError();
+}
+
+}  // namespace
+}  // namespace plumb::lod

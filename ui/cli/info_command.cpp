@@ -1,0 +1,63 @@
+// plumb info: what an octree holds, and whether it is intact.
+
+#include <CLI/App.hpp>
+#include <CLI/Config.hpp>
+#include <CLI/Formatter.hpp>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "engine/lod/octree.h"
+#include "ui/cli/arguments.h"
+#include "ui/cli/command.h"
+
+namespace plumb::cli {
+
+Command addInfoCommand(CLI::App& plumb) {
+  auto path = std::make_shared<std::string>();
+  auto verify = std::make_shared<bool>(false);
+  CLI::App* sub = plumb.add_subcommand("info", "Describe an octree: points, bounds, levels, nodes, spacing");
+  sub->add_option("octree", *path, "An octree built by 'plumb import'")->required()->check(CLI::ExistingFile);
+  sub->add_flag("--verify", *verify, "Read every node and check its checksum");
+
+  auto run = [path, verify]() -> int {
+    const auto octree = lod::Octree::open(*path);
+    const lod::OctreeHeader& h = octree->header();
+    std::printf("%s\n", path->c_str());
+    std::printf("  points      %s", withThousands(h.point_count).c_str());
+    if (h.skipped_non_finite > 0) {
+      std::printf(" (%s input points skipped: NaN or infinite coordinates)",
+                  withThousands(h.skipped_non_finite).c_str());
+    }
+    std::printf("\n  inputs      %u file%s\n", h.input_files, h.input_files == 1 ? "" : "s");
+    std::printf("  bounds      x %.3f .. %.3f\n              y %.3f .. %.3f\n              z %.3f .. %.3f\n",
+                h.bounds.min[0], h.bounds.max[0], h.bounds.min[1], h.bounds.max[1], h.bounds.min[2], h.bounds.max[2]);
+    std::printf("  cube        origin %.3f %.3f %.3f, size %.3f m\n", h.cube.origin[0], h.cube.origin[1],
+                h.cube.origin[2], h.cube.size);
+    std::string attributes;
+    if (h.attributes & lod::kHasColour) attributes += " colour";
+    if (h.attributes & lod::kHasIntensity) attributes += " intensity";
+    std::printf("  attributes  position%s\n", attributes.c_str());
+    std::printf("  nodes       %s in %u levels (leaves hold up to %s points)\n", withThousands(h.node_count).c_str(),
+                h.depth + 1, withThousands(h.leaf_max_points).c_str());
+
+    std::map<std::uint32_t, std::pair<std::uint64_t, std::uint64_t>> per_level;  // nodes, points
+    for (const lod::NodeInfo& node : octree->nodes()) {
+      ++per_level[node.key.level].first;
+      per_level[node.key.level].second += node.point_count;
+    }
+    std::printf("  level  spacing      nodes        points\n");
+    for (const auto& [level, counts] : per_level) {
+      std::printf("  %5u  %9.4f m  %9s  %12s\n", level, octree->spacing(level), withThousands(counts.first).c_str(),
+                  withThousands(counts.second).c_str());
+    }
+    if (*verify) {
+      for (const lod::NodeInfo& node : octree->nodes()) octree->load(node);  // throws on a bad checksum
+      std::printf("  verified    every node's checksum\n");
+    }
+    return 0;
+  };
+  return {sub, run};
+}
+
+}  // namespace plumb::cli
