@@ -28,13 +28,16 @@ struct Cube {
   std::array<double, 3> cellMin(const CellKey& key) const { return cellBox(key).min; }
 
   // The cell of `level` holding point p (clamped into the cube, so points on the far faces
-  // belong to the last cell).
+  // belong to the last cell). The one rule for which cell a point lies in: every level scales
+  // the same product (p - origin) * (1 / size) by a power of two, exactly, so a point's cell at
+  // one level is always the parent of its cell at the next.
   CellKey cellAt(const std::array<double, 3>& p, std::uint32_t level) const {
-    const double n = std::ldexp(1.0, static_cast<int>(level));
+    const auto n = static_cast<double>(std::uint64_t{1} << level);
+    const double scale = n / size;  // = 2^level * (1 / size), rounded once
     std::array<std::uint32_t, 3> index{};
-    for (int a = 0; a < 3; ++a) {
-      const double cell = std::floor((p[static_cast<std::size_t>(a)] - origin[static_cast<std::size_t>(a)]) / size * n);
-      index[static_cast<std::size_t>(a)] = static_cast<std::uint32_t>(std::clamp(cell, 0.0, n - 1.0));
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double cell = std::floor((p[a] - origin[a]) * scale);
+      index[a] = static_cast<std::uint32_t>(std::clamp(cell, 0.0, n - 1.0));
     }
     return {level, index[0], index[1], index[2]};
   }

@@ -120,22 +120,27 @@ std::array<std::vector<Position>, 8> NodeIndexer::coarserForChildren(const CellK
   return result;
 }
 
-std::array<std::size_t, 9> NodeIndexer::splitByOctant(const CellKey& key, std::span<BuildPoint> points) const {
-  auto octant = [&](const BuildPoint& p) { return octantOf(key, {p.x, p.y, p.z}); };
-  std::array<std::size_t, 9> bounds{};
+std::array<std::size_t, 9> NodeIndexer::splitByOctant(const CellKey& key, std::span<BuildPoint> points) {
+  octants_.resize(points.size());
   std::array<std::size_t, 8> counts{};
-  for (const BuildPoint& p : points) ++counts[static_cast<std::size_t>(octant(p))];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    octants_[i] = static_cast<std::uint8_t>(octantOf(key, {points[i].x, points[i].y, points[i].z}));
+    ++counts[octants_[i]];
+  }
+  std::array<std::size_t, 9> bounds{};
   for (std::size_t o = 0; o < 8; ++o) bounds[o + 1] = bounds[o] + counts[o];
-  // In-place cycle sort into the eight ranges (American flag sort, one pass).
+  // In-place cycle sort into the eight ranges (American flag sort), the octants moving along.
   std::array<std::size_t, 8> next{};
   for (std::size_t o = 0; o < 8; ++o) next[o] = bounds[o];
   for (std::size_t o = 0; o < 8; ++o) {
     while (next[o] < bounds[o + 1]) {
-      const auto target = static_cast<std::size_t>(octant(points[next[o]]));
+      const std::size_t target = octants_[next[o]];
       if (target == o) {
         ++next[o];
       } else {
-        std::swap(points[next[o]], points[next[target]++]);
+        const std::size_t to = next[target]++;
+        std::swap(points[next[o]], points[to]);
+        std::swap(octants_[next[o]], octants_[to]);
       }
     }
   }

@@ -65,7 +65,7 @@ class NodeIndexer {
                                                           std::span<const BuildPoint> selected) const;
   int octantOf(const CellKey& key, const Position& p) const;
   // Reorders points by child octant; returns the 9 range boundaries.
-  std::array<std::size_t, 9> splitByOctant(const CellKey& key, std::span<BuildPoint> points) const;
+  std::array<std::size_t, 9> splitByOctant(const CellKey& key, std::span<BuildPoint> points);
   bool isLeaf(const CellKey& key, std::size_t count) const;
 
   Cube cube_;
@@ -75,6 +75,7 @@ class NodeIndexer {
   std::vector<float> best_distance_;
   std::vector<std::uint32_t> touched_;
   std::vector<std::uint8_t> selected_;
+  std::vector<std::uint8_t> octants_;
 };
 
 }  // namespace plumb::lod

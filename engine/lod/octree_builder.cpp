@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
 
@@ -155,49 +156,110 @@ class Builder {
   }
 
  private:
-  template <typename Visit>
-  void forEachPoint(std::string_view phase, Visit&& visit) {
-    io::PointBatch batch;
+  // A batch of input points with what the parallel stage worked out about them.
+  struct Batch {
+    io::PointBatch points;
+    std::vector<std::uint32_t> cells;  // counting-grid cell of each point
+    Box3 box{};                        // bounds of the batch
+  };
+
+  // Reads every input once through a three-stage pipeline: reading (serial: readers are not
+  // thread-safe), `prepare` (parallel, per batch) and `apply` (serial, in input order), so that
+  // parsing the next batch overlaps with the work on this one.
+  template <typename Prepare, typename Apply>
+  void pipelinedPass(std::string_view phase, std::uint64_t total, Prepare&& prepare, Apply&& apply) {
+    constexpr std::size_t kLiveBatches = 4;
+    // The batches circulate instead of being allocated anew: their buffers keep their capacity.
+    std::array<Batch, kLiveBatches> storage;
+    std::vector<Batch*> free_batches;
+    for (Batch& batch : storage) free_batches.push_back(&batch);
+    std::mutex free_mutex;
+
     std::uint64_t done = 0;
     for (const BuildSource& source : options_.sources) {
-      const auto reader = source.open();
-      while (reader->read(batch, kReadBatchPoints)) {
-        for (const io::PointRecord& p : batch.points) visit(p);
-        done += batch.size();
-        if (options_.progress) options_.progress(phase, done, header_.point_count);
-      }
+      const std::unique_ptr<io::PointReader> reader = source.open();
+      tbb::parallel_pipeline(
+          kLiveBatches,
+          tbb::make_filter<void, Batch*>(tbb::filter_mode::serial_in_order,
+                                         [&](tbb::flow_control& control) -> Batch* {
+                                           Batch* batch = nullptr;
+                                           {
+                                             const std::lock_guard lock(free_mutex);
+                                             batch = free_batches.back();
+                                             free_batches.pop_back();
+                                           }
+                                           if (!reader->read(batch->points, kReadBatchPoints)) {
+                                             const std::lock_guard lock(free_mutex);
+                                             free_batches.push_back(batch);
+                                             control.stop();
+                                             return nullptr;
+                                           }
+                                           return batch;
+                                         }) &
+              tbb::make_filter<Batch*, Batch*>(tbb::filter_mode::parallel,
+                                               [&](Batch* batch) {
+                                                 prepare(*batch);
+                                                 return batch;
+                                               }) &
+              tbb::make_filter<Batch*, void>(tbb::filter_mode::serial_in_order, [&](Batch* batch) {
+                apply(*batch);
+                done += batch->points.size();
+                if (options_.progress) options_.progress(phase, done, total);
+                const std::lock_guard lock(free_mutex);
+                free_batches.push_back(batch);
+              }));
+      afterSource(source, *reader);
     }
+  }
+
+  void locateCells(Batch& batch) const {
+    batch.cells.resize(batch.points.size());
+    for (std::size_t i = 0; i < batch.points.size(); ++i) {
+      const io::PointRecord& p = batch.points.points[i];
+      batch.cells[i] = static_cast<std::uint32_t>(flatCell(header_.cube.cellAt({p.x, p.y, p.z}, kCountLevel)));
+    }
+  }
+
+  // Called after each input's pass; the bounds pass collects what the reader reports.
+  void afterSource(const BuildSource& source, const io::PointReader& reader) {
+    if (!collecting_input_facts_) return;
+    header_.skipped_non_finite += reader.counts().non_finite;
+    if (reader.info().attributes.colour) header_.attributes |= kHasColour;
+    if (reader.info().attributes.intensity) header_.attributes |= kHasIntensity;
+    for (const std::string& field : reader.info().ignored_fields) report_.ignored_fields.push_back(source.name + ": " + field);
   }
 
   void scanBounds() {
     Box3& b = header_.bounds;
     b.min.fill(INFINITY);
     b.max.fill(-INFINITY);
-    io::PointBatch batch;
     std::uint64_t count = 0;
-    for (const BuildSource& source : options_.sources) {
-      const auto reader = source.open();
-      while (reader->read(batch, kReadBatchPoints)) {
-        for (const io::PointRecord& p : batch.points) {
-          const double xyz[3] = {p.x, p.y, p.z};
-          for (std::size_t a = 0; a < 3; ++a) {
-            b.min[a] = std::min(b.min[a], xyz[a]);
-            b.max[a] = std::max(b.max[a], xyz[a]);
+    collecting_input_facts_ = true;
+    pipelinedPass(
+        "reading bounds", 0,
+        [](Batch& batch) {
+          batch.box.min.fill(INFINITY);
+          batch.box.max.fill(-INFINITY);
+          for (const io::PointRecord& p : batch.points.points) {
+            const double xyz[3] = {p.x, p.y, p.z};
+            for (std::size_t a = 0; a < 3; ++a) {
+              batch.box.min[a] = std::min(batch.box.min[a], xyz[a]);
+              batch.box.max[a] = std::max(batch.box.max[a], xyz[a]);
+            }
           }
-        }
-        count += batch.size();
-        if (options_.progress) options_.progress("reading bounds", count, 0);
-      }
-      header_.skipped_non_finite += reader->counts().non_finite;
-      if (reader->info().attributes.colour) header_.attributes |= kHasColour;
-      if (reader->info().attributes.intensity) header_.attributes |= kHasIntensity;
-      for (const std::string& field : reader->info().ignored_fields) {
-        report_.ignored_fields.push_back(source.name + ": " + field);
-      }
-    }
-    if (count == 0)
+        },
+        [&](const Batch& batch) {
+          for (std::size_t a = 0; a < 3; ++a) {
+            b.min[a] = std::min(b.min[a], batch.box.min[a]);
+            b.max[a] = std::max(b.max[a], batch.box.max[a]);
+          }
+          count += batch.points.size();
+        });
+    collecting_input_facts_ = false;
+    if (count == 0) {
       throw Error("the input holds no points" +
                   std::string(header_.skipped_non_finite > 0 ? " with finite coordinates" : ""));
+    }
     header_.point_count = count;
     header_.input_files = static_cast<std::uint32_t>(options_.sources.size());
 
@@ -214,10 +276,12 @@ class Builder {
   std::vector<std::uint64_t> countCells() {
     std::vector<std::uint64_t> counts(kCountCells, 0);
     std::uint64_t seen = 0;
-    forEachPoint("counting", [&](const io::PointRecord& p) {
-      ++counts[flatCell(header_.cube.cellAt({p.x, p.y, p.z}, kCountLevel))];
-      ++seen;
-    });
+    pipelinedPass(
+        "counting", header_.point_count, [&](Batch& batch) { locateCells(batch); },
+        [&](const Batch& batch) {
+          for (std::uint32_t cell : batch.cells) ++counts[cell];
+          seen += batch.cells.size();
+        });
     // The inputs changed between passes, or a reader is not deterministic.
     if (seen != header_.point_count) throw Error("an input changed while it was being read; run the import again");
     return counts;
@@ -279,10 +343,14 @@ class Builder {
   }
 
   void distribute() {
-    forEachPoint("distributing", [&](const io::PointRecord& p) {
-      const std::uint32_t chunk = chunk_of_cell_[flatCell(header_.cube.cellAt({p.x, p.y, p.z}, kCountLevel))];
-      chunks_[chunk]->add({p.x, p.y, p.z, p.rgb, p.intensity});
-    });
+    pipelinedPass(
+        "distributing", header_.point_count, [&](Batch& batch) { locateCells(batch); },
+        [&](const Batch& batch) {
+          for (std::size_t i = 0; i < batch.cells.size(); ++i) {
+            const io::PointRecord& p = batch.points.points[i];
+            chunks_[chunk_of_cell_[batch.cells[i]]]->add({p.x, p.y, p.z, p.rgb, p.intensity});
+          }
+        });
     for (auto& chunk : chunks_) chunk->flush();
     chunk_of_cell_ = {};
   }
@@ -445,6 +513,7 @@ class Builder {
   std::mutex output_mutex_;
   std::vector<NodeInfo> nodes_;
   std::uint64_t indexed_points_ = 0;
+  bool collecting_input_facts_ = false;
 };
 
 }  // namespace
