@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstring>
 
 #include "engine/core/error.h"
 
@@ -34,10 +35,14 @@ std::shared_ptr<const Octree> Octree::open(const std::string& path) {
   struct stat status {};
   if (::fstat(tree->fd_, &status) != 0 || !S_ISREG(status.st_mode)) throw fileError(path, "is not a regular file");
   const auto file_size = static_cast<std::uint64_t>(status.st_size);
-  if (file_size < kHeaderBytes) throw fileErrorAt(path, file_size, "truncated: shorter than an octree header");
-
+  // The magic first: a short file that is not an octree should say so, not "truncated".
   std::array<std::byte, kHeaderBytes> header_bytes{};
-  readAt(tree->fd_, path, 0, header_bytes);
+  readAt(tree->fd_, path, 0, std::span(header_bytes).first(std::min<std::uint64_t>(file_size, kHeaderBytes)));
+  if (file_size < kOctreeMagic.size() ||
+      std::memcmp(header_bytes.data(), kOctreeMagic.data(), kOctreeMagic.size()) != 0) {
+    throw fileErrorAt(path, 0, "not a Plumb octree (build one with 'plumb import')");
+  }
+  if (file_size < kHeaderBytes) throw fileErrorAt(path, file_size, "truncated: shorter than an octree header");
   OctreeHeader& h = tree->header_ = decodeHeader(header_bytes, path);
 
   if (h.index_bytes != h.node_count * kIndexEntryBytes || h.index_offset < kHeaderBytes || h.index_offset > file_size ||

@@ -9,6 +9,8 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/temp_directory.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -19,38 +21,24 @@ struct Outcome {
   std::string err;
 };
 
-std::string readAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 class Cli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = fs::temp_directory_path() / ("plumb_cli_" + std::to_string(::getpid()) + "_" +
-                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-
   // Runs plumb with `arguments` (shell words), no standard input.
   Outcome plumb(const std::string& arguments) const {
     const fs::path out = directory_ / "stdout.txt", err = directory_ / "stderr.txt";
     const std::string command =
         std::string(PLUMB_BINARY) + " " + arguments + " </dev/null >" + out.string() + " 2>" + err.string();
     const int status = std::system(command.c_str());
-    Outcome run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readAll(out), readAll(err)};
+    Outcome run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, plumb::test::readFile(out), plumb::test::readFile(err)};
     fs::remove(out);
     fs::remove(err);
     return run;
   }
-  std::size_t entries() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(directory_), fs::directory_iterator()));
-  }
+  std::size_t entries() const { return temp_.entryCount(); }
   std::string path(const std::string& name) const { return (directory_ / name).string(); }
 
-  fs::path directory_;
+  plumb::test::TempDirectory temp_;
+  fs::path directory_ = temp_.path();
 };
 
 TEST_F(Cli, HelpListsTheCommands) {
@@ -108,14 +96,52 @@ TEST_F(Cli, SimulateWritesTheRequestedPointsAndTruth) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("points per second"), std::string::npos) << run.out;
 
-  const nlohmann::json truth = nlohmann::json::parse(readAll(path("room.json")));
+  const nlohmann::json truth = nlohmann::json::parse(plumb::test::readFile(path("room.json")));
   const auto written = truth["points"]["written"].get<double>();
   EXPECT_NEAR(written, 200'000.0, 2'000.0);
-  const std::string ply = readAll(path("room.ply"));
+  const std::string ply = plumb::test::readFile(path("room.ply"));
   EXPECT_NE(ply.find("element vertex " + std::to_string(truth["points"]["written"].get<std::uint64_t>()) + "\n"),
             std::string::npos);
   EXPECT_EQ(truth["offset"][1].get<double>(), 5403000.0);
   EXPECT_EQ(entries(), 2u);
+}
+
+TEST_F(Cli, ImportMergesFilesAndInfoDescribesTheOctree) {
+  ASSERT_EQ(plumb("simulate --points 50000 --offset 512000,5403000,250 -o " + path("room.ply")).exit_code, 0);
+  std::ofstream(path("extra.xyz")) << "512001 5403001 251\n512002 5403002 251.5\nnan 1 2\n";
+  const Outcome import = plumb("import " + path("room.ply") + " " + path("extra.xyz") + " -o " + path("site.plumb"));
+  ASSERT_EQ(import.exit_code, 0) << import.err;
+  EXPECT_NE(import.out.find("from 2 files"), std::string::npos) << import.out;
+  EXPECT_NE(import.out.find("skipped  1 points with NaN"), std::string::npos) << import.out;
+  EXPECT_NE(import.out.find("ignored  " + path("room.ply") + ": plane_id"), std::string::npos) << import.out;
+
+  const Outcome info = plumb("info --verify " + path("site.plumb"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("1 input points skipped"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("verified"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("spacing"), std::string::npos) << info.out;
+}
+
+TEST_F(Cli, ImportOfABadFileNamesItAndLeavesNoOctree) {
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n";
+  std::ofstream(path("bad.ply")) << header << "short";
+  const Outcome truncated = plumb("import " + path("bad.ply") + " -o " + path("site.plumb"));
+  EXPECT_EQ(truncated.exit_code, 1);
+  EXPECT_NE(truncated.err.find(path("bad.ply") + "' at byte " + std::to_string(header.size()) + ": truncated"),
+            std::string::npos)
+      << truncated.err;
+  std::ofstream(path("scan.laz")) << "LASF";
+  const Outcome laz = plumb("import " + path("scan.laz") + " -o " + path("site.plumb"));
+  EXPECT_EQ(laz.exit_code, 1);
+  EXPECT_NE(laz.err.find("LAZ"), std::string::npos) << laz.err;
+  EXPECT_NE(plumb("import " + path("absent.ply") + " -o " + path("site.plumb")).exit_code, 0);
+  EXPECT_EQ(entries(), 2u) << "only the two inputs";
+
+  const Outcome info = plumb("info " + path("bad.ply"));
+  EXPECT_EQ(info.exit_code, 1);
+  EXPECT_NE(info.err.find("not a Plumb octree"), std::string::npos) << info.err;
 }
 
 TEST_F(Cli, OutputIntoAMissingFolderFailsCleanly) {

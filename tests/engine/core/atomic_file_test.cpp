@@ -10,6 +10,7 @@
 #include <iterator>
 
 #include "engine/core/error.h"
+#include "tests/support/temp_directory.h"
 
 namespace plumb {
 namespace {
@@ -18,23 +19,10 @@ namespace fs = std::filesystem;
 
 class AtomicFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = fs::temp_directory_path() / ("plumb_atomic_" + std::to_string(::getpid()) + "_" +
-                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
+  std::size_t entries() const { return temp_.entryCount(); }
 
-  std::size_t entries() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(directory_), fs::directory_iterator()));
-  }
-  static std::string contents(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
-
-  fs::path directory_;
+  test::TempDirectory temp_;
+  fs::path directory_ = temp_.path();
 };
 
 TEST_F(AtomicFileTest, AppearsOnlyOnCommit) {
@@ -47,7 +35,7 @@ TEST_F(AtomicFileTest, AppearsOnlyOnCommit) {
     EXPECT_FALSE(fs::exists(target));
     file.commit();
   }
-  EXPECT_EQ(contents(target), "hello world");
+  EXPECT_EQ(test::readFile(target.string()), "hello world");
   EXPECT_EQ(entries(), 1u);  // no temporary left beside it
 }
 
@@ -68,11 +56,11 @@ TEST_F(AtomicFileTest, ReplacesAnExistingFileOnlyOnCommit) {
     AtomicFile file(target.string());
     file.write("new", 3);
   }
-  EXPECT_EQ(contents(target), "old");
+  EXPECT_EQ(test::readFile(target.string()), "old");
   AtomicFile file(target.string());
   file.write("new", 3);
   file.commit();
-  EXPECT_EQ(contents(target), "new");
+  EXPECT_EQ(test::readFile(target.string()), "new");
 }
 
 TEST_F(AtomicFileTest, OverwritePatchesEarlierBytesAcrossTheBuffer) {
@@ -85,7 +73,7 @@ TEST_F(AtomicFileTest, OverwritePatchesEarlierBytesAcrossTheBuffer) {
   const char patch[] = "1234";
   file.overwrite(0, std::as_bytes(std::span(patch, 4)));
   file.commit();
-  const std::string text = contents(target);
+  const std::string text = test::readFile(target.string());
   ASSERT_EQ(text.size(), 4 + big.size() + 4);
   EXPECT_EQ(text.substr(0, 4), "1234");
   EXPECT_EQ(text.substr(text.size() - 4), "tail");

@@ -262,6 +262,8 @@ TEST_F(CorruptOctree, HeaderIndexTruncationAndVersionAreChecked) {
   EXPECT_NE(openError().find("newer than this Plumb"), std::string::npos) << openError();
 
   rewrite("PLY\n");
+  EXPECT_NE(openError().find("not a Plumb octree"), std::string::npos) << openError();
+  rewrite(bytes_.substr(0, 100));
   EXPECT_NE(openError().find("shorter than an octree header"), std::string::npos) << openError();
   rewrite(std::string(300, 'x'));
   EXPECT_NE(openError().find("not a Plumb octree"), std::string::npos) << openError();

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
+#include "tests/support/temp_directory.h"
 
 namespace plumb::reco::sim {
 namespace {
@@ -18,14 +19,6 @@ namespace fs = std::filesystem;
 
 class SimulationTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = fs::temp_directory_path() / ("plumb_sim_" + std::to_string(::getpid()) + "_" +
-                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-
   SimulationRequest request(std::uint64_t points) const {
     SimulationRequest r;
     r.scene = "room";
@@ -34,17 +27,11 @@ class SimulationTest : public ::testing::Test {
     r.truth_path = (directory_ / "room.json").string();
     return r;
   }
-  std::size_t entries() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(directory_), fs::directory_iterator()));
-  }
+  std::size_t entries() const { return temp_.entryCount(); }
 
-  fs::path directory_;
+  test::TempDirectory temp_;
+  fs::path directory_ = temp_.path();
 };
-
-std::string readAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 TEST_F(SimulationTest, WritesDoublePrecisionPlyAndTruthAtAnOffset) {
   SimulationRequest r = request(100'000);
@@ -53,7 +40,7 @@ TEST_F(SimulationTest, WritesDoublePrecisionPlyAndTruthAtAnOffset) {
   const SimulationReport report = simulate(r);
 
   EXPECT_NEAR(static_cast<double>(report.counts.returns), 100'000.0, 1'000.0);
-  const std::string ply = readAll(r.ply_path);
+  const std::string ply = test::readFile(r.ply_path);
   const std::size_t header_end = ply.find("end_header\n") + 11;
   const std::string header = ply.substr(0, header_end);
   EXPECT_NE(header.find("element vertex " + std::to_string(report.counts.returns) + "\n"), std::string::npos);
@@ -63,7 +50,7 @@ TEST_F(SimulationTest, WritesDoublePrecisionPlyAndTruthAtAnOffset) {
   ASSERT_EQ(ply.size(), header_end + report.counts.returns * kRow);
   EXPECT_EQ(report.ply_bytes, ply.size());
 
-  const nlohmann::json truth = nlohmann::json::parse(readAll(r.truth_path));
+  const nlohmann::json truth = nlohmann::json::parse(test::readFile(r.truth_path));
   EXPECT_EQ(truth["format"], "plumb-simulation-truth");
   EXPECT_EQ(truth["points"]["written"], report.counts.returns);
   ASSERT_EQ(truth["planes"].size(), report.planes);
@@ -104,7 +91,7 @@ TEST_F(SimulationTest, WithoutOffsetCoordinatesAreFloats) {
   SimulationRequest r = request(10'000);
   r.truth_path.clear();
   const SimulationReport report = simulate(r);
-  const std::string ply = readAll(r.ply_path);
+  const std::string ply = test::readFile(r.ply_path);
   EXPECT_NE(ply.find("property float x\n"), std::string::npos);
   EXPECT_EQ(ply.size(), ply.find("end_header\n") + 11 + report.counts.returns * (3 * 4 + 3 + 2 + 4));
   EXPECT_EQ(entries(), 1u);
