@@ -25,7 +25,8 @@ FileSource::FileSource(std::string path) : path_(std::move(path)) {
   }
   size_ = static_cast<std::uint64_t>(status.st_size);
   ::posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
-  buffer_.resize(kBufferBytes);
+  // Small files get a small buffer: tests and headers should not cost 4 MB each.
+  buffer_.resize(static_cast<std::size_t>(std::clamp<std::uint64_t>(size_, 1, kBufferBytes)));
 }
 
 FileSource::~FileSource() {

@@ -1,7 +1,8 @@
 #pragma once
 // Streaming point-cloud readers: PLY, LAS, PCD and ASCII (XYZ, TXT, PTS, CSV).
 //
-// A reader delivers points in batches of bounded size and never holds the whole file in memory.
+// A reader delivers points in batches of bounded size and never holds the whole file in memory
+// (except PCD binary_compressed, whose single LZF block must be decompressed whole).
 // Points with NaN or infinite coordinates are skipped and counted (ReadCounts), never passed on.
 // Anything malformed (truncated data, counts that disagree with the data, unknown types) throws
 // plumb::Error naming the file and the byte offset or line.
@@ -31,6 +32,7 @@ struct PointBatch {
   std::vector<std::array<float, 3>> normals;
 
   std::size_t size() const { return points.size(); }
+  bool empty() const { return points.empty(); }
   void clear() {
     points.clear();
     normals.clear();
@@ -71,7 +73,7 @@ class PointReader {
   const ReadCounts& counts() const { return counts_; }
   const std::string& path() const { return path_; }
 
-  // Clears `batch` and fills it with up to `max_points` points. Returns false when the file is
+  // Clears `batch` and fills it with up to `max_points` (>= 1) points. Returns false when the file is
   // exhausted and the batch is empty. Throws plumb::Error on malformed content; after the last
   // point it also checks that the data matched the header (no missing and no surplus records).
   virtual bool read(PointBatch& batch, std::size_t max_points) = 0;

@@ -1,5 +1,7 @@
 // plumb import: point files to a Plumb octree.
 
+#include <sys/resource.h>
+
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
