@@ -73,8 +73,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ScannerNoise,
                          ::testing::Values(NoiseCase{"room", 0.002, 0.0}, NoiseCase{"room", 0.001, 30.0},
                                            NoiseCase{"office", 0.010, 0.0}, NoiseCase{"stairs", 0.002, -45.0},
                                            NoiseCase{"facade", 0.005, 0.0}, NoiseCase{"room", 0.030, 10.0}),
-                         [](const ::testing::TestParamInfo<NoiseCase>& info) {
-                           const NoiseCase& c = info.param;
+                         [](const ::testing::TestParamInfo<NoiseCase>& param_info) {
+                           const NoiseCase& c = param_info.param;
                            return c.scene + "_" + std::to_string(std::lround(c.noise_m * 1e3)) + "mm_rotated" +
                                   std::to_string(std::lround(std::abs(c.rotation_deg))) + "deg";
                          });
