@@ -142,7 +142,9 @@ int roleNamed(std::string_view name) {
 }
 
 std::uint16_t toColour(double value, Scalar type) {
-  if (type == Scalar::kUInt8) return widenColour(static_cast<std::uint8_t>(value));
+  if (!std::isfinite(value)) return 0;
+  // An ascii file may write any number for a uchar property: clamp before narrowing.
+  if (type == Scalar::kUInt8) return widenColour(static_cast<std::uint8_t>(std::clamp(std::round(value), 0.0, 255.0)));
   const double scaled = isFloat(type) ? value * 65535.0 : value;
   return static_cast<std::uint16_t>(std::clamp(std::round(scaled), 0.0, 65535.0));
 }
@@ -262,6 +264,11 @@ class PlyReader final : public PointReader {
     info_.attributes.normals = roles_[kNx] >= 0 && roles_[kNy] >= 0 && roles_[kNz] >= 0;
     info_.declared_points = vertex->count;
     remaining_ = vertex->count;
+    for (std::size_t r = 0; r < kRoleCount; ++r) {
+      if (roles_[r] < 0) continue;
+      const Property& property = vertex->properties[static_cast<std::size_t>(roles_[r])];
+      decoders_.push_back({r, property.offset, property.type});
+    }
   }
 
   void skipElementsBeforeVertex() {
@@ -272,6 +279,10 @@ class PlyReader final : public PointReader {
           if (!source_.readLine(line_))
             throw source_.errorHere("truncated: the file ends inside element '" + element.name + "'");
         } else if (element.fixed_size) {
+          if (element.row_bytes > 0 && element.count > source_.remaining() / element.row_bytes) {
+            throw source_.errorHere("truncated: element '" + element.name + "' declares " +
+                                    std::to_string(element.count) + " rows, more than the file holds");
+          }
           source_.skip(element.count * element.row_bytes, "element '" + element.name + "'");
           break;
         } else {
@@ -364,11 +375,7 @@ class PlyReader final : public PointReader {
     source_.readExactly(rows_, "the vertex data");
     for (std::uint64_t row = 0; row < count; ++row) {
       const std::byte* base = rows_.data() + row * vertex.row_bytes;
-      for (std::size_t r = 0; r < kRoleCount; ++r) {
-        if (roles_[r] < 0) continue;
-        const Property& property = vertex.properties[static_cast<std::size_t>(roles_[r])];
-        value[r] = decode(base + property.offset, property.type, swap_);
-      }
+      for (const Decoder& d : decoders_) value[d.role] = decode(base + d.offset, d.type, swap_);
       emit(batch, value, types);
     }
     remaining_ -= count;
@@ -394,7 +401,7 @@ class PlyReader final : public PointReader {
         }
         ++w;
         if (property.is_list) {
-          if (number < 0 || w + static_cast<std::size_t>(number) > words.size()) {
+          if (!(number >= 0.0 && number <= static_cast<double>(words.size() - w))) {
             throw source_.errorAtLine("list '" + property.name + "' is longer than the line");
           }
           w += static_cast<std::size_t>(number);
@@ -432,6 +439,13 @@ class PlyReader final : public PointReader {
   std::vector<Element> elements_;
   std::size_t vertex_index_ = 0;
   std::array<int, kRoleCount> roles_{};
+  // The kept properties of a fixed-size row: which role, where, what type.
+  struct Decoder {
+    std::size_t role;
+    std::size_t offset;
+    Scalar type;
+  };
+  std::vector<Decoder> decoders_;
   std::uint64_t remaining_ = 0;
   bool checked_end_ = false;
   std::vector<std::byte> rows_;

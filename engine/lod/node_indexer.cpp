@@ -147,13 +147,10 @@ std::array<std::size_t, 9> NodeIndexer::splitByOctant(const CellKey& key, std::s
   return bounds;
 }
 
-bool NodeIndexer::indexSubtree(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
-                               const NodeSink& sink) {
-  if (points.empty()) return false;
-  if (isLeaf(key, points.size())) {
-    sink(key, points, 0);
-    return true;
-  }
+std::pair<std::size_t, std::uint8_t> NodeIndexer::keepSubsampleAndIndexChildren(const CellKey& key,
+                                                                                std::span<BuildPoint> points,
+                                                                                std::span<const Position> coarser,
+                                                                                const ChildIndexer& index_child) {
   const std::size_t kept = selectSubsample(key, points, coarser);
   const std::span<BuildPoint> rest = points.subspan(kept);
   const auto bounds = splitByOctant(key, rest);
@@ -162,9 +159,22 @@ bool NodeIndexer::indexSubtree(const CellKey& key, std::span<BuildPoint> points,
   for (int o = 0; o < 8; ++o) {
     const auto index = static_cast<std::size_t>(o);
     const auto range = rest.subspan(bounds[index], bounds[index + 1] - bounds[index]);
-    if (indexSubtree(key.child(o), range, child_coarser[index], sink))
-      mask = static_cast<std::uint8_t>(mask | (1u << o));
+    if (index_child(key.child(o), range, child_coarser[index])) mask = static_cast<std::uint8_t>(mask | (1u << o));
   }
+  return {kept, mask};
+}
+
+bool NodeIndexer::indexSubtree(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
+                               const NodeSink& sink) {
+  if (points.empty()) return false;
+  if (isLeaf(key, points.size())) {
+    sink(key, points, 0);
+    return true;
+  }
+  const auto [kept, mask] = keepSubsampleAndIndexChildren(
+      key, points, coarser, [&](const CellKey& child, std::span<BuildPoint> range, std::span<const Position> above) {
+        return indexSubtree(child, range, above, sink);
+      });
   sink(key, points.first(kept), mask);
   return true;
 }
@@ -184,18 +194,10 @@ bool NodeIndexer::indexAbove(const CellKey& key, std::span<BuildPoint> points, s
     assert(points.empty() && "points outside every indexed subtree");
     return false;
   }
-  const std::size_t kept = selectSubsample(key, points, coarser);
-  const std::span<BuildPoint> rest = points.subspan(kept);
-  const auto bounds = splitByOctant(key, rest);
-  const auto child_coarser = coarserForChildren(key, coarser, points.first(kept));
-  std::uint8_t mask = 0;
-  for (int o = 0; o < 8; ++o) {
-    const auto index = static_cast<std::size_t>(o);
-    const auto range = rest.subspan(bounds[index], bounds[index + 1] - bounds[index]);
-    if (indexAbove(key.child(o), range, child_coarser[index], stops, stop_sink, sink)) {
-      mask = static_cast<std::uint8_t>(mask | (1u << o));
-    }
-  }
+  const auto [kept, mask] = keepSubsampleAndIndexChildren(
+      key, points, coarser, [&](const CellKey& child, std::span<BuildPoint> range, std::span<const Position> above) {
+        return indexAbove(child, range, above, stops, stop_sink, sink);
+      });
   if (kept == 0 && mask == 0) return false;  // everything below was taken further up
   sink(key, points.first(kept), mask);
   return true;

@@ -57,6 +57,14 @@ class NodeIndexer {
                   const StopSet& stops, const StopSink& stop_sink, const NodeSink& sink);
 
  private:
+  // Keeps this node's subsample at the front of `points` and builds each child from the rest with
+  // `index_child` (which returns whether the child exists); returns the number of points kept
+  // and the mask of the children that exist.
+  using ChildIndexer =
+      std::function<bool(const CellKey& child, std::span<BuildPoint> points, std::span<const Position> coarser)>;
+  std::pair<std::size_t, std::uint8_t> keepSubsampleAndIndexChildren(const CellKey& key, std::span<BuildPoint> points,
+                                                                     std::span<const Position> coarser,
+                                                                     const ChildIndexer& index_child);
   // Moves the grid subsample of `points` to its front and returns its size; grid cells holding
   // a `coarser` point take none.
   std::size_t selectSubsample(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser);

@@ -72,10 +72,28 @@ class ChunkFile {
     if (buffer_.size() == kChunkBufferPoints) flush();
   }
 
+  // Appends a run of points: buffered when short, written straight through when long.
+  void append(std::span<const BuildPoint> points) {
+    if (buffer_.size() + points.size() > kChunkBufferPoints) flush();
+    if (points.size() >= kChunkBufferPoints) {
+      writeAt(written_, points);
+      written_ += points.size();
+    } else {
+      buffer_.insert(buffer_.end(), points.begin(), points.end());
+    }
+  }
+
   void flush() {
-    const auto* data = reinterpret_cast<const char*>(buffer_.data());
-    std::size_t left = buffer_.size() * sizeof(BuildPoint);
-    off_t at = static_cast<off_t>(written_ * sizeof(BuildPoint));
+    writeAt(written_, buffer_);
+    written_ += buffer_.size();
+    buffer_.clear();
+  }
+
+ private:
+  void writeAt(std::uint64_t first, std::span<const BuildPoint> points) {
+    const auto* data = reinterpret_cast<const char*>(points.data());
+    std::size_t left = points.size_bytes();
+    off_t at = static_cast<off_t>(first * sizeof(BuildPoint));
     while (left > 0) {
       const ssize_t done = ::pwrite(fd_, data, left, at);
       if (done < 0 && errno == EINTR) continue;
@@ -85,10 +103,9 @@ class ChunkFile {
       left -= static_cast<std::size_t>(done);
       at += done;
     }
-    written_ += buffer_.size();
-    buffer_.clear();
   }
 
+ public:
   // Points [first, first + out.size()) of the flushed file.
   void read(std::uint64_t first, std::span<BuildPoint> out) const {
     auto* data = reinterpret_cast<char*>(out.data());
@@ -161,6 +178,8 @@ class Builder {
     io::PointBatch points;
     std::vector<std::uint32_t> cells;  // counting-grid cell of each point
     Box3 box{};                        // bounds of the batch
+    std::vector<BuildPoint> by_chunk;  // the points grouped by chunk (distribution)
+    std::vector<std::size_t> chunk_starts;
   };
 
   // Reads every input once through a three-stage pipeline: reading (serial: readers are not
@@ -294,8 +313,9 @@ class Builder {
     const std::size_t per_thread = budget_bytes_ / threads;
     const std::size_t usable = per_thread > kIndexerScratchBytes ? per_thread - kIndexerScratchBytes : per_thread / 2;
     const std::uint64_t by_memory = usable / kIndexBytesPerPoint;
-    // Enough chunks to keep every thread busy; a chunk is indexed by one thread.
-    const std::uint64_t by_balance = std::max<std::uint64_t>(header_.point_count / (4 * threads), kMinChunkPoints);
+    // A chunk is indexed by one thread: about 16 chunks per thread keep every thread busy to the
+    // end, whatever the sizes.
+    const std::uint64_t by_balance = std::max<std::uint64_t>(header_.point_count / (16 * threads), kMinChunkPoints);
     return std::max<std::uint64_t>(std::min(by_memory, by_balance), 4 * std::uint64_t{options_.leaf_max_points});
   }
 
@@ -343,12 +363,30 @@ class Builder {
   }
 
   void distribute() {
+    // The parallel stage groups each batch by chunk, so the serial stage only appends runs.
+    const std::size_t chunk_count = chunks_.size();
     pipelinedPass(
-        "distributing", header_.point_count, [&](Batch& batch) { locateCells(batch); },
-        [&](const Batch& batch) {
+        "distributing", header_.point_count,
+        [&](Batch& batch) {
+          locateCells(batch);
+          std::vector<std::size_t>& starts = batch.chunk_starts;
+          starts.assign(chunk_count + 1, 0);
+          for (std::uint32_t& cell : batch.cells) {
+            cell = chunk_of_cell_[cell];  // from here on: the chunk of the point
+            ++starts[cell + 1];
+          }
+          for (std::size_t c = 0; c < chunk_count; ++c) starts[c + 1] += starts[c];
+          batch.by_chunk.resize(batch.cells.size());
+          std::vector<std::size_t> next(starts.begin(), starts.end() - 1);
           for (std::size_t i = 0; i < batch.cells.size(); ++i) {
             const io::PointRecord& p = batch.points.points[i];
-            chunks_[chunk_of_cell_[batch.cells[i]]]->add({p.x, p.y, p.z, p.rgb, p.intensity});
+            batch.by_chunk[next[batch.cells[i]]++] = {p.x, p.y, p.z, p.rgb, p.intensity};
+          }
+        },
+        [&](const Batch& batch) {
+          for (std::size_t c = 0; c < chunk_count; ++c) {
+            const std::size_t begin = batch.chunk_starts[c], end = batch.chunk_starts[c + 1];
+            if (end > begin) chunks_[c]->append(std::span(batch.by_chunk).subspan(begin, end - begin));
           }
         });
     for (auto& chunk : chunks_) chunk->flush();

@@ -67,6 +67,10 @@ Command addImportCommand(CLI::App& plumb) {
     std::printf("  chunks   %zu (largest %s points), indexed on %u thread%s within %zu MiB\n", report.chunks,
                 withThousands(report.largest_chunk_points).c_str(), report.index_threads,
                 report.index_threads == 1 ? "" : "s", options->memory_mb);
+    rusage usage{};
+    ::getrusage(RUSAGE_SELF, &usage);
+    std::printf("  memory   peak resident %.0f MB (budget %zu MiB)\n", static_cast<double>(usage.ru_maxrss) / 1024.0,
+                options->memory_mb);
     std::printf(
         "  time     %.2f s (bounds %.2f, counting %.2f, distributing %.2f, indexing %.2f): %.2f million points "
         "per second\n",
