@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -142,6 +143,25 @@ TEST_F(Cli, ImportOfABadFileNamesItAndLeavesNoOctree) {
   const Outcome info = plumb("info " + path("bad.ply"));
   EXPECT_EQ(info.exit_code, 1);
   EXPECT_NE(info.err.find("not a Plumb octree"), std::string::npos) << info.err;
+}
+
+TEST_F(Cli, AnInterruptedImportLeavesNothingBehind) {
+  ASSERT_EQ(plumb("simulate --points 3000000 -o " + path("big.ply")).exit_code, 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const std::string input = path("big.ply"), output = path("site.plumb");
+    ::execl(PLUMB_BINARY, PLUMB_BINARY, "import", input.c_str(), "-o", output.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Long enough to be inside the build (a few seconds here), short enough not to see it finish.
+  ::usleep(700'000);
+  ::kill(child, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) GTEST_SKIP() << "the import finished before the interrupt";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT);
+  EXPECT_EQ(entries(), 1u) << "only the input may remain: no octree, no temporary file";
 }
 
 TEST_F(Cli, OutputIntoAMissingFolderFailsCleanly) {
