@@ -53,6 +53,11 @@ struct NoiseCase {
   double rotation_deg;
 };
 
+// Names the case in test listings (instead of a byte dump).
+void PrintTo(const NoiseCase& c, std::ostream* out) {
+  *out << c.scene << ", " << c.noise_m * 1e3 << " mm, rotated " << c.rotation_deg << " deg";
+}
+
 class ScannerNoise : public ::testing::TestWithParam<NoiseCase> {};
 
 // The acceptance test of the simulator: the RMS distance of the points to their true planes is

@@ -1,0 +1,52 @@
+// Automatic parameters, paper section 3.7.
+//
+//   1. The picked point's depth in camera space; the size of one pixel there: for a perspective
+//      projection 2 * depth / (P11 * height), for an orthographic one 2 / (P11 * height).
+//   2. r_s = 10 % of the screen width at that depth (pixel size * viewport width * 0.1).
+//   3. d from the pixel size, logarithmic between the near and the far constants.
+//   4. r = 2 mean spacings at density d, the spacing being d^(-1/3).
+//   5. t_p is the user's setting.
+
+#include "reco/parameters.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace plumb::reco {
+
+double pixelSizeAt(const ViewAtClick& view) {
+  const Eigen::Vector4d camera = view.view * view.picked.homogeneous();
+  const double p11 = view.projection(1, 1);
+  const bool perspective = view.projection(3, 3) == 0.0;  // the w row of a perspective matrix is (0 0 -1 0)
+  if (!perspective) return 2.0 / (p11 * view.viewport_height_px);
+  const double depth = -camera.z();
+  assert(depth > 0.0 && "the picked point must lie in front of the camera");
+  return 2.0 * depth / (p11 * view.viewport_height_px);
+}
+
+GrowParameters parametersForDensity(const Eigen::Vector3d& seed, double density, double seed_radius_m,
+                                    const ParameterConstants& c) {
+  GrowParameters p;
+  p.seed = seed;
+  p.seed_radius_m = seed_radius_m;
+  p.density = density;
+  p.spacing_m = std::cbrt(1.0 / density);
+  p.search_radius_m = c.search_radius_spacings * p.spacing_m;
+  p.plane_threshold_m = c.plane_threshold_m;
+  p.pixel_size_m = 0.0;
+  return p;
+}
+
+GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstants& c) {
+  const double pixel = pixelSizeAt(view);
+  const double t = std::clamp(std::log(pixel / c.near_pixel_m) / std::log(c.far_pixel_m / c.near_pixel_m), 0.0, 1.0);
+  const double density = c.max_density * std::pow(c.min_density / c.max_density, t);
+  GrowParameters p =
+      parametersForDensity(view.picked, density, c.seed_fraction_of_width * pixel * view.viewport_width_px, c);
+  p.pixel_size_m = pixel;
+  return p;
+}
+
+}  // namespace plumb::reco

@@ -1,0 +1,54 @@
+#pragma once
+// Automatic parameter estimation (paper section 3.7): the region grower's parameters from what
+// the user sees. Moving the camera closer to a place raises the detail of its reconstruction.
+// docs/parameters.md explains the constants.
+
+#include <Eigen/Core>
+
+namespace plumb::reco {
+
+// What the camera shows when the user clicks: OpenGL-style matrices (the camera looks down its
+// -z axis; clip space from the projection), the viewport in pixels, and the picked point.
+struct ViewAtClick {
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();        // world -> camera
+  Eigen::Matrix4d projection = Eigen::Matrix4d::Identity();  // camera -> clip (perspective or orthographic)
+  double viewport_width_px = 1920.0;
+  double viewport_height_px = 1080.0;
+  Eigen::Vector3d picked = Eigen::Vector3d::Zero();  // world coordinates, double precision
+};
+
+// The constants of the mapping, all configurable; the defaults follow the paper.
+struct ParameterConstants {
+  double seed_fraction_of_width = 0.10;  // r_s: this share of the screen width at the picked depth
+  // d falls logarithmically from max_density (pixels of near_pixel_m or smaller) to min_density
+  // (pixels of far_pixel_m or larger), in points per cubic metre.
+  double max_density = 10'000.0;
+  double min_density = 100.0;
+  double near_pixel_m = 0.0005;         // 0.5 mm per pixel: a wall seen from about half a metre
+  double far_pixel_m = 0.02;            // 20 mm per pixel: a facade seen from about 40 m
+  double search_radius_spacings = 2.0;  // r: this many mean point spacings at density d
+  double plane_threshold_m = 0.02;      // t_p: the user's precision setting
+};
+
+struct GrowParameters {
+  Eigen::Vector3d seed;      // p_0, the picked point
+  double seed_radius_m;      // r_s
+  double density;            // d, points per cubic metre
+  double spacing_m;          // the mean point spacing at density d: d^(-1/3)
+  double search_radius_m;    // r
+  double plane_threshold_m;  // t_p
+  double pixel_size_m;       // the projected size of a pixel at the picked point, for display
+};
+
+// The parameters for a click. The picked point must lie in front of a perspective camera.
+GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstants& constants = {});
+
+// The parameters for a wanted density (the --detail and --view-distance paths of plumb grow).
+GrowParameters parametersForDensity(const Eigen::Vector3d& seed, double density, double seed_radius_m,
+                                    const ParameterConstants& constants = {});
+
+// The size of a pixel at the picked point, metres (perspective: grows with depth; orthographic:
+// constant).
+double pixelSizeAt(const ViewAtClick& view);
+
+}  // namespace plumb::reco

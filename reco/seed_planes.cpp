@@ -1,0 +1,53 @@
+// Seed planes, paper section 3.4.
+//
+//   1. Candidates: all seed points.
+//   2. RANSAC the best plane among the candidates (threshold t_p); stop when none has the
+//      minimum support or max_planes are found.
+//   3. Remove its inliers from the candidates and repeat.
+//   4. Rank by inlier count; with drop_unstable, keep only Otsu's high class of the counts.
+
+#include "reco/seed_planes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reco/otsu.h"
+
+namespace plumb::reco {
+
+std::vector<SeedPlane> findSeedPlanes(std::span<const Eigen::Vector3d> points, const SeedOptions& options) {
+  const PlaneSampleModel model(points);
+  Random random(options.seed);
+  RansacOptions ransac;
+  ransac.threshold = options.threshold;
+  ransac.max_iterations = options.max_iterations;
+  ransac.min_inliers = std::max<std::size_t>(
+      6, static_cast<std::size_t>(std::ceil(options.min_inlier_fraction * static_cast<double>(points.size()))));
+
+  std::vector<std::uint32_t> candidates(points.size());
+  for (std::uint32_t i = 0; i < candidates.size(); ++i) candidates[i] = i;
+
+  std::vector<SeedPlane> planes;
+  while (planes.size() < options.max_planes) {
+    auto found = ransacPlane(model, candidates, ransac, random);
+    if (!found) break;
+    // Candidates stay sorted: remove the (sorted) inliers by a merge.
+    std::vector<std::uint32_t> rest;
+    rest.reserve(candidates.size() - found->inliers.size());
+    std::set_difference(candidates.begin(), candidates.end(), found->inliers.begin(), found->inliers.end(),
+                        std::back_inserter(rest));
+    candidates = std::move(rest);
+    planes.push_back({found->plane, std::move(found->inliers)});
+  }
+
+  std::stable_sort(planes.begin(), planes.end(),
+                   [](const SeedPlane& a, const SeedPlane& b) { return a.inliers.size() > b.inliers.size(); });
+  if (options.drop_unstable) {
+    std::vector<double> counts;
+    for (const SeedPlane& plane : planes) counts.push_back(static_cast<double>(plane.inliers.size()));
+    planes.resize(otsuHighClassSize(counts));
+  }
+  return planes;
+}
+
+}  // namespace plumb::reco

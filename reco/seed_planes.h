@@ -1,0 +1,33 @@
+#pragma once
+// The initial seed of the region grower (paper section 3.4): up to three planes in the points
+// of the seed sphere, found by RANSAC and ranked by inlier count, the unstable ones optionally
+// dropped by Otsu's threshold. Each plane then starts an incremental regression.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "reco/ransac.h"
+
+namespace plumb::reco {
+
+struct SeedOptions {
+  double threshold = 0.01;            // plane threshold t_p, metres
+  std::size_t max_planes = 3;         // a corner seed has three
+  double min_inlier_fraction = 0.05;  // a plane needs this share of the seed points (and >= 6)
+  bool drop_unstable = true;          // Otsu's threshold on the inlier counts
+  std::uint64_t seed = 1;             // of the random generator: the same points give the same planes
+  std::uint32_t max_iterations = 500;
+};
+
+struct SeedPlane {
+  Plane plane;
+  std::vector<std::uint32_t> inliers;  // indices into the seed points
+};
+
+// The seed planes of `points`, most supported first. Each point supports at most one plane:
+// sequential RANSAC removes a plane's inliers before looking for the next.
+std::vector<SeedPlane> findSeedPlanes(std::span<const Eigen::Vector3d> points, const SeedOptions& options);
+
+}  // namespace plumb::reco
