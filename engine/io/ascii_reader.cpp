@@ -190,12 +190,9 @@ class AsciiReader final : public PointReader {
                                   " is not a number");
       }
     }
-    if (!std::isfinite(value[kX]) || !std::isfinite(value[kY]) || !std::isfinite(value[kZ])) {
-      ++counts_.non_finite;
-      return;
-    }
     PointRecord point{value[kX], value[kY], value[kZ], {0, 0, 0}, 0};
-    if (info_.attributes.colour) {
+    // The attributes of a point that will be skipped (NaN position) are not checked.
+    if (info_.attributes.colour && point.hasFinitePosition()) {
       for (std::size_t c = 0; c < 3; ++c) {
         const double channel = value[kRed + c];
         if (!(channel >= 0.0 && channel <= 255.0)) {
@@ -212,12 +209,8 @@ class AsciiReader final : public PointReader {
       point.intensity =
           std::isfinite(scaled) ? static_cast<std::uint16_t>(std::clamp(std::round(scaled), 0.0, 65535.0)) : 0;
     }
-    batch.points.push_back(point);
-    if (info_.attributes.normals) {
-      batch.normals.push_back(
-          {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
-    }
-    ++counts_.delivered;
+    deliver(batch, point,
+            {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
   }
 
   void checkEnd() {

@@ -154,7 +154,6 @@ class LasReader : public PointReader {
       for (std::size_t i = 0; i < records; ++i) decode(records_.data() + i * record_length_, batch);
       next_record_ += records;
     }
-    counts_.delivered += batch.size();
     return batch.size() > 0;
   }
 
@@ -310,18 +309,14 @@ void LasReader::decode(const std::byte* record, PointBatch& batch) {
   point.x = static_cast<double>(loadLittleEndian<std::int32_t>(record)) * scale_[0] + offset_[0];
   point.y = static_cast<double>(loadLittleEndian<std::int32_t>(record + 4)) * scale_[1] + offset_[1];
   point.z = static_cast<double>(loadLittleEndian<std::int32_t>(record + 8)) * scale_[2] + offset_[2];
-  // Integers cannot be NaN, but a huge scale can still overflow to infinity.
-  if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) {
-    ++counts_.non_finite;
-    return;
-  }
   point.intensity = loadLittleEndian<std::uint16_t>(record + 12);
   if (layout_.has_colour) {
     for (std::size_t channel = 0; channel < 3; ++channel) {
       point.rgb[channel] = loadLittleEndian<std::uint16_t>(record + layout_.colour_at + 2 * channel);
     }
   }
-  batch.points.push_back(point);
+  // Integers cannot be NaN, but a huge scale can overflow to infinity: deliver() counts those.
+  deliver(batch, point);
 }
 
 }  // namespace

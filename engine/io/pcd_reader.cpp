@@ -434,22 +434,14 @@ class PcdReader final : public PointReader {
   }
 
   void emit(PointBatch& batch, const std::array<double, kRoleCount>& value, std::uint32_t packed) {
-    if (!std::isfinite(value[kX]) || !std::isfinite(value[kY]) || !std::isfinite(value[kZ])) {
-      ++counts_.non_finite;
-      return;
-    }
     PointRecord point{value[kX], value[kY], value[kZ], {0, 0, 0}, 0};
     if (info_.attributes.colour) {
       point.rgb = {widenColour(static_cast<std::uint8_t>(packed >> 16)),
                    widenColour(static_cast<std::uint8_t>(packed >> 8)), widenColour(static_cast<std::uint8_t>(packed))};
     }
     if (info_.attributes.intensity) point.intensity = toIntensity(value[kIntensity]);
-    batch.points.push_back(point);
-    if (info_.attributes.normals) {
-      batch.normals.push_back(
-          {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
-    }
-    ++counts_.delivered;
+    deliver(batch, point,
+            {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
   }
 
   void readBinary(PointBatch& batch, std::size_t max_points) {

@@ -321,22 +321,14 @@ class PlyReader final : public PointReader {
 
   void emit(PointBatch& batch, const std::array<double, kRoleCount>& value,
             const std::array<Scalar, kRoleCount>& type) {
-    if (!std::isfinite(value[kX]) || !std::isfinite(value[kY]) || !std::isfinite(value[kZ])) {
-      ++counts_.non_finite;
-      return;
-    }
     PointRecord point{value[kX], value[kY], value[kZ], {0, 0, 0}, 0};
     if (info_.attributes.colour) {
       point.rgb = {toColour(value[kRed], type[kRed]), toColour(value[kGreen], type[kGreen]),
                    toColour(value[kBlue], type[kBlue])};
     }
     if (info_.attributes.intensity) point.intensity = toIntensity(value[kIntensity]);
-    batch.points.push_back(point);
-    if (info_.attributes.normals) {
-      batch.normals.push_back(
-          {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
-    }
-    ++counts_.delivered;
+    deliver(batch, point,
+            {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
   }
 
   std::array<Scalar, kRoleCount> roleTypes() const {

@@ -10,6 +10,7 @@
 // Not thread-safe: one thread reads one reader.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -24,6 +25,8 @@ struct PointRecord {
   double x, y, z;
   std::array<std::uint16_t, 3> rgb;
   std::uint16_t intensity;
+
+  bool hasFinitePosition() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 };
 
 struct PointBatch {
@@ -80,6 +83,19 @@ class PointReader {
 
  protected:
   explicit PointReader(std::string path) : path_(std::move(path)) {}
+
+  // Hands one decoded point to `batch` (with its normal when the file has normals), or counts it
+  // as skipped when a coordinate is NaN or infinite. Every reader ends a point here, so nothing
+  // is dropped without being counted.
+  void deliver(PointBatch& batch, const PointRecord& point, const std::array<float, 3>& normal = {}) {
+    if (!point.hasFinitePosition()) {
+      ++counts_.non_finite;
+      return;
+    }
+    batch.points.push_back(point);
+    if (info_.attributes.normals) batch.normals.push_back(normal);
+    ++counts_.delivered;
+  }
 
   std::string path_;
   CloudInfo info_;

@@ -25,15 +25,7 @@ class GeneratedReader final : public io::PointReader {
 
   bool read(io::PointBatch& batch, std::size_t max_points) override {
     batch.clear();
-    while (batch.size() < max_points && next_ < count_) {
-      const io::PointRecord p = generator_(next_++);
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-        ++counts_.non_finite;
-        continue;
-      }
-      batch.points.push_back(p);
-      ++counts_.delivered;
-    }
+    while (batch.size() < max_points && next_ < count_) deliver(batch, generator_(next_++));
     return !batch.points.empty();
   }
 
