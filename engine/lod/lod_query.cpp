@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "engine/lod/node_cache.h"
+
 namespace plumb::lod {
 namespace {
 
@@ -63,6 +65,20 @@ std::vector<CellKey> existingNeighbours(const Octree& octree, const CellKey& key
   std::vector<CellKey> result;
   for (const CellKey& neighbour : key.neighbours()) {
     if (octree.find(neighbour) != nullptr) result.push_back(neighbour);
+  }
+  return result;
+}
+
+std::vector<std::array<double, 3>> pointsInCell(NodeCache& cache, const CellKey& key) {
+  std::vector<std::array<double, 3>> result;
+  const Cube& cube = cache.octree().cube();
+  for (std::optional<CellKey> level = key; level; level = level->parent()) {
+    const auto points = cache.get(*level);
+    if (!points) continue;
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const std::array<double, 3> p = points->position(i);
+      if (level->level == key.level || cube.cellAt(p, key.level) == key) result.push_back(p);
+    }
   }
   return result;
 }

@@ -33,4 +33,12 @@ std::vector<CellKey> cellsByDistance(const Octree& octree, const std::array<doub
 // Which of the 26 neighbours of `key` hold a node.
 std::vector<CellKey> existingNeighbours(const Octree& octree, const CellKey& key);
 
+class NodeCache;
+
+// The points of cell `key` at its level's spacing: the points of its own node and those of its
+// ancestors that lie in the cell (Cube::cellAt decides, so each point of levels 0..key.level
+// belongs to exactly one cell of key.level). World coordinates. Loads through `cache`; blocks on
+// nodes not yet loaded.
+std::vector<std::array<double, 3>> pointsInCell(NodeCache& cache, const CellKey& key);
+
 }  // namespace plumb::lod

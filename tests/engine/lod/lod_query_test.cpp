@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "engine/lod/node_cache.h"
 #include "engine/lod/octree_builder.h"
 #include "tests/support/generated_cloud.h"
 #include "tests/support/temp_directory.h"
@@ -80,6 +81,30 @@ TEST(LodQuery, ExistingNeighboursAreTheNeighbourCellsThatHoldNodes) {
       }
     }
     EXPECT_EQ(found.size(), expected);
+  }
+}
+
+// Points of levels 0..L are shared out among the cells of level L: none lost, none twice, each
+// in its cell. (Where a branch ends in a leaf above level L there is no level-L cell to ask.)
+TEST(LodQuery, PointsInCellShareOutTheCoarserLevels) {
+  test::TempDirectory dir;
+  const auto octree = buildFloor(dir, "floor.plumb", 30.0);
+  NodeCache cache(octree, 64 << 20);
+  for (std::uint32_t level = 0; level <= 3; ++level) {
+    std::uint64_t expected = 0, found = 0;
+    for (const NodeInfo& node : octree->nodes()) {
+      if (node.key.level > level) continue;
+      const NodePoints points = octree->load(node);
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        if (octree->find(octree->cube().cellAt(points.position(i), level)) != nullptr) ++expected;
+      }
+      if (node.key.level != level) continue;
+      const auto in_cell = pointsInCell(cache, node.key);
+      for (const auto& p : in_cell) ASSERT_EQ(octree->cube().cellAt(p, level), node.key);
+      found += in_cell.size();
+    }
+    EXPECT_EQ(found, expected) << "level " << level;
+    EXPECT_GT(found, 0u);
   }
 }
 
