@@ -14,6 +14,7 @@
 #include "reco/plane_regression.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <cassert>
 #include <cmath>
 

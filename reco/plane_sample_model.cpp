@@ -1,5 +1,7 @@
 #include "reco/plane_sample_model.h"
 
+#include <Eigen/Geometry>
+
 #include "reco/plane_regression.h"
 
 namespace plumb::reco {

@@ -164,6 +164,31 @@ TEST_F(Cli, AnInterruptedImportLeavesNothingBehind) {
   EXPECT_EQ(entries(), 1u) << "only the input may remain: no octree, no temporary file";
 }
 
+TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
+  ASSERT_EQ(plumb("simulate --points 300000 --noise-mm 2 --offset 512000,5403000,250 -o " + path("room.ply")).exit_code,
+            0);
+  // Near the room's corner (7, 5, 2.5) and a little inside: the x+ wall, the y+ wall, the ceiling.
+  const Outcome grow = plumb("grow " + path("room.ply") + " --seed 512006.9,5403004.9,252.4 --view-distance 3 --json " +
+                             path("grow.json"));
+  ASSERT_EQ(grow.exit_code, 0) << grow.err;
+  EXPECT_NE(grow.out.find("grew 3 segments"), std::string::npos) << grow.out;
+  const nlohmann::json result = nlohmann::json::parse(plumb::test::readFile(path("grow.json")));
+  EXPECT_EQ(result["format"], "plumb-grow");
+  ASSERT_EQ(result["segments"].size(), 3u);
+  for (const auto& segment : result["segments"]) {
+    double largest = 0.0;
+    for (const auto& c : segment["plane"]["normal"]) largest = std::max(largest, std::abs(c.get<double>()));
+    EXPECT_GT(largest, 0.9999) << "room planes are axis-aligned";
+    EXPECT_GT(segment["statistics"]["points"].get<double>(), 100.0);
+  }
+  EXPECT_GE(result["timing"]["converged_ms"].get<double>(), result["timing"]["first_progress_ms"].get<double>());
+  EXPECT_EQ(entries(), 2u) << "room.ply and grow.json only";
+
+  const Outcome bad = plumb("grow " + path("room.ply") + " --seed 1,2");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--seed takes three finite numbers"), std::string::npos) << bad.err;
+}
+
 TEST_F(Cli, OutputIntoAMissingFolderFailsCleanly) {
   const Outcome run = plumb("simulate --points 1000 -o " + path("nowhere/room.ply"));
   EXPECT_EQ(run.exit_code, 1);
