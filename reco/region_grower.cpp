@@ -11,6 +11,7 @@
 //      neighbouring cells they are within r of, which are queued (again) for processing.
 //   4. After a cell that added points, refit the grown planes and publish a snapshot.
 //   5. Stop when the queue is empty (converged) or the cancel flag is set (checked per cell).
+//   6. Intersect the segments for their edges and corners (edges_and_corners.h).
 
 #include "reco/region_grower.h"
 
@@ -153,6 +154,7 @@ class Grower {
     state.assigned[index] = 1;
     const Eigen::Vector3d& p = state.points[index];
     regressions_[segment].add(p);
+    segment_points_[segment].push_back(p);
     assigned_[grid_.keyOf(p)].push_back({p, segment});
     grown_[segment] = true;
     // The plane follows the regression as it grows (the paper tests each point against the
@@ -199,6 +201,7 @@ class Grower {
     regressions_.resize(planes.size());
     planes_.resize(planes.size());
     fitted_count_.assign(planes.size(), 0);
+    segment_points_.resize(planes.size());
     grown_.assign(planes.size(), false);
     for (std::uint32_t s = 0; s < planes.size(); ++s) {
       planes_[s] = planes[s].plane;  // the RANSAC refit, until the regression takes over
@@ -296,6 +299,13 @@ class Grower {
   GrowSnapshot finish(bool converged) {
     snapshot_.converged = converged;
     fillSnapshot();
+    std::vector<SegmentGeometry> geometry;
+    for (std::size_t s = 0; s < regressions_.size(); ++s) geometry.push_back({planes_[s], segment_points_[s]});
+    FeatureOptions features;
+    features.search_radius = radius_;
+    Features found = findEdgesAndCorners(geometry, features);
+    snapshot_.edges = std::move(found.edges);
+    snapshot_.corners = std::move(found.corners);
     return snapshot_;
   }
 
@@ -310,8 +320,9 @@ class Grower {
 
   GrowSnapshot snapshot_;
   std::vector<PlaneRegression> regressions_;
-  std::vector<Plane> planes_;                // the regressions' planes, refitted as they grow
-  std::vector<std::uint64_t> fitted_count_;  // regression size at the last refit
+  std::vector<Plane> planes_;                                 // the regressions' planes, refitted as they grow
+  std::vector<std::uint64_t> fitted_count_;                   // regression size at the last refit
+  std::vector<std::vector<Eigen::Vector3d>> segment_points_;  // for the edges and corners
   std::vector<bool> grown_;
   std::unordered_map<CellKey, CellState, lod::CellKeyHash> cells_;
   std::unordered_map<GridKey, std::vector<Assigned>, GridKeyHash> assigned_;

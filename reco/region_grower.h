@@ -5,9 +5,10 @@
 // points, until no cell adds anything. Works at one level of detail: the level whose spacing
 // matches the density d of the parameters.
 //
+// The final result also carries the edges and corners between the segments (section 4.1).
 // Not yet here (next steps of the issue): the adaptive resolution of section 3.6 (switching
-// levels when the observed spacing drifts from d), the alpha-shape outline of each segment and
-// the edges and corners of section 4.1.
+// levels when the observed spacing drifts from d), the alpha-shape outline of each segment, and
+// edges and corners in the intermediate snapshots.
 
 #include <Eigen/Core>
 #include <atomic>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "engine/lod/node_cache.h"
+#include "reco/edges_and_corners.h"
 #include "reco/parameters.h"
 #include "reco/plane_regression.h"
 
@@ -38,6 +40,8 @@ struct SegmentSnapshot {
 // An immutable picture of the grow at one moment; safe to hand to another thread.
 struct GrowSnapshot {
   std::vector<SegmentSnapshot> segments;
+  std::vector<Edge> edges;             // final result only: between segments, with their support range
+  std::vector<Corner> corners;         // final result only
   std::uint32_t level = 0;             // octree level worked on
   std::uint64_t cells_visited = 0;     // cell visits (a cell is visited again when a neighbour grows to it)
   std::uint64_t points_tested = 0;     // candidate point-to-plane tests

@@ -182,6 +182,14 @@ TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
     EXPECT_GT(segment["statistics"]["points"].get<double>(), 100.0);
   }
   EXPECT_GE(result["timing"]["converged_ms"].get<double>(), result["timing"]["first_progress_ms"].get<double>());
+  // The room corner where the three meet, at 2 mm noise: found within 5 mm (accuracy targets
+  // are the evaluation's business; this checks the plumbing).
+  ASSERT_EQ(result["corners"].size(), 1u);
+  const auto& corner = result["corners"][0]["position"];
+  EXPECT_NEAR(corner[0].get<double>(), 512007.0, 0.005);
+  EXPECT_NEAR(corner[1].get<double>(), 5403005.0, 0.005);
+  EXPECT_NEAR(corner[2].get<double>(), 252.5, 0.005);
+  EXPECT_EQ(result["edges"].size(), 3u);
   EXPECT_EQ(entries(), 2u) << "room.ply and grow.json only";
 
   const Outcome bad = plumb("grow " + path("room.ply") + " --seed 1,2");

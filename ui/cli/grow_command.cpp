@@ -144,6 +144,15 @@ Command addGrowCommand(CLI::App& plumb) {
                   withThousands(segment.points).c_str(), plane.normal.x(), plane.normal.y(), plane.normal.z(),
                   plane.rms * 1e3, plane.lambda2);
     }
+    for (const reco::Edge& edge : result.edges) {
+      std::printf("  edge        segments %u-%u, %.3f m from %.3f %.3f %.3f to %.3f %.3f %.3f\n", edge.segments[0],
+                  edge.segments[1], (edge.end - edge.start).norm(), edge.start.x(), edge.start.y(), edge.start.z(),
+                  edge.end.x(), edge.end.y(), edge.end.z());
+    }
+    for (const reco::Corner& corner : result.corners) {
+      std::printf("  corner      segments %u-%u-%u at %.4f %.4f %.4f\n", corner.segments[0], corner.segments[1],
+                  corner.segments[2], corner.position.x(), corner.position.y(), corner.position.z());
+    }
     std::printf("  time        first snapshot %.1f ms, %s %.1f ms; %s cell visits, %s point tests\n", first_progress_ms,
                 result.converged ? "converged" : "stopped", result.elapsed_ms,
                 withThousands(result.cells_visited).c_str(), withThousands(result.points_tested).c_str());
@@ -161,6 +170,18 @@ Command addGrowCommand(CLI::App& plumb) {
                {"bitangent", vector3(plane.bitangent)}}},
              {"statistics", {{"points", segment.points}, {"lambda2", plane.lambda2}, {"rms_m", plane.rms}}}});
       }
+      nlohmann::json edges = nlohmann::json::array();
+      for (const reco::Edge& edge : result.edges) {
+        edges.push_back({{"start", vector3(edge.start)},
+                         {"end", vector3(edge.end)},
+                         {"segments", edge.segments},
+                         {"support_points", edge.support_points}});
+      }
+      nlohmann::json corners = nlohmann::json::array();
+      for (const reco::Corner& corner : result.corners) {
+        corners.push_back(
+            {{"position", vector3(corner.position)}, {"segments", corner.segments}, {"support", corner.support}});
+      }
       const nlohmann::json root{{"format", "plumb-grow"},
                                 {"version", 1},
                                 {"cloud", options->cloud},
@@ -173,6 +194,8 @@ Command addGrowCommand(CLI::App& plumb) {
                                   {"plane_threshold_m", parameters.plane_threshold_m},
                                   {"level", result.level}}},
                                 {"segments", segments},
+                                {"edges", edges},
+                                {"corners", corners},
                                 {"timing",
                                  {{"first_progress_ms", first_progress_ms},
                                   {"converged_ms", result.elapsed_ms},

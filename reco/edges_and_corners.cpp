@@ -1,0 +1,113 @@
+// Edge and corner reconstruction, paper section 4.1.
+//
+//   1. For every pair of segments whose valid planes meet at more than min_angle: intersect
+//      them (in coordinates relative to the segments' centroids, exact at UTM scale).
+//   2. Gather each segment's points within 2r of the line; with at least min_near_points from
+//      each, project them onto the line: the 5th to 95th percentile is the support range and
+//      gives the edge's endpoints.
+//   3. For every triple of segments whose pairs are all non-parallel, solve the three planes
+//      for the corner; viable when each segment reaches it (a point within 2r: a corner of a
+//      room is at the very end of its three walls, where each has only a quarter disc of
+//      points). Its support is the three regression variances.
+
+#include "reco/edges_and_corners.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace plumb::reco {
+namespace {
+
+bool intersecting(const Plane& a, const Plane& b, double min_sine) {
+  return a.normal.cross(b.normal).norm() > min_sine;
+}
+
+double percentile(std::vector<double>& values, double q) {
+  const auto index = static_cast<std::size_t>(std::lround(q * static_cast<double>(values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
+  return values[index];
+}
+
+// The line where planes a and b meet: a point near their centroids and a unit direction.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> intersectionLine(const Plane& a, const Plane& b) {
+  const Eigen::Vector3d reference = 0.5 * (a.centroid + b.centroid);
+  const Eigen::Vector3d direction = a.normal.cross(b.normal).normalized();
+  Eigen::Matrix3d m;
+  m.row(0) = a.normal.transpose();
+  m.row(1) = b.normal.transpose();
+  m.row(2) = direction.transpose();
+  // n . (x - reference) = n . (centroid - reference) for both planes; no motion along the line.
+  const Eigen::Vector3d rhs(a.normal.dot(a.centroid - reference), b.normal.dot(b.centroid - reference), 0.0);
+  return {reference + m.partialPivLu().solve(rhs), direction};
+}
+
+}  // namespace
+
+Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const FeatureOptions& options) {
+  Features features;
+  const double min_sine = std::sin(options.min_angle_deg * M_PI / 180.0);
+  const double near = 2.0 * options.search_radius;
+  const auto n = static_cast<std::uint32_t>(segments.size());
+  auto usable = [&](std::uint32_t s) { return segments[s].plane.valid && !segments[s].points.empty(); };
+
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t j = i + 1; j < n; ++j) {
+      if (!usable(i) || !usable(j) || !intersecting(segments[i].plane, segments[j].plane, min_sine)) continue;
+      const auto [origin, direction] = intersectionLine(segments[i].plane, segments[j].plane);
+      std::vector<double> along;
+      bool both_near = true;
+      for (std::uint32_t s : {i, j}) {
+        std::uint32_t count = 0;
+        for (const Eigen::Vector3d& p : segments[s].points) {
+          const Eigen::Vector3d offset = p - origin;
+          const double t = offset.dot(direction);
+          if ((offset - t * direction).squaredNorm() <= near * near) {
+            along.push_back(t);
+            ++count;
+          }
+        }
+        both_near = both_near && count >= options.min_near_points;
+      }
+      if (!both_near) continue;
+      const auto support = static_cast<std::uint32_t>(along.size());
+      const double low = percentile(along, options.low_percentile);
+      const double high = percentile(along, options.high_percentile);
+      features.edges.push_back({{i, j}, origin + low * direction, origin + high * direction, direction, support});
+    }
+  }
+
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t j = i + 1; j < n; ++j) {
+      for (std::uint32_t k = j + 1; k < n; ++k) {
+        if (!usable(i) || !usable(j) || !usable(k)) continue;
+        const Plane& a = segments[i].plane;
+        const Plane& b = segments[j].plane;
+        const Plane& c = segments[k].plane;
+        if (!intersecting(a, b, min_sine) || !intersecting(a, c, min_sine) || !intersecting(b, c, min_sine)) continue;
+        // Three planes through a common line (a pencil) have no single corner.
+        if (std::abs(a.normal.cross(b.normal).normalized().dot(c.normal)) < min_sine) continue;
+        const Eigen::Vector3d reference = (a.centroid + b.centroid + c.centroid) / 3.0;
+        Eigen::Matrix3d m;
+        m.row(0) = a.normal.transpose();
+        m.row(1) = b.normal.transpose();
+        m.row(2) = c.normal.transpose();
+        const Eigen::Vector3d rhs(a.normal.dot(a.centroid - reference), b.normal.dot(b.centroid - reference),
+                                  c.normal.dot(c.centroid - reference));
+        const Eigen::Vector3d corner = reference + m.partialPivLu().solve(rhs);
+        // Each segment must reach the corner: a point of it (a vertex of its outline) within 2r.
+        const std::array<std::uint32_t, 3> trio{i, j, k};
+        const bool all_near = std::all_of(trio.begin(), trio.end(), [&](std::uint32_t s) {
+          return std::any_of(segments[s].points.begin(), segments[s].points.end(),
+                             [&](const Eigen::Vector3d& p) { return (p - corner).squaredNorm() <= near * near; });
+        });
+        if (!all_near) continue;
+        features.corners.push_back({{i, j, k}, corner, {a.lambda2, b.lambda2, c.lambda2}});
+      }
+    }
+  }
+  return features;
+}
+
+}  // namespace plumb::reco

@@ -1,0 +1,52 @@
+#pragma once
+// Edges and corners as intersections of segments (paper section 4.1): the maximum-likelihood
+// features the drawing tools snap to.
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "reco/plane.h"
+
+namespace plumb::reco {
+
+// What the feature search needs of a segment: its plane and its points (world coordinates).
+struct SegmentGeometry {
+  Plane plane;
+  std::span<const Eigen::Vector3d> points;
+};
+
+struct Edge {
+  std::array<std::uint32_t, 2> segments;
+  Eigen::Vector3d start;             // the support range: from the 5th ...
+  Eigen::Vector3d end;               // ... to the 95th percentile of the nearby points along the line
+  Eigen::Vector3d direction;         // unit, from start to end
+  std::uint32_t support_points = 0;  // points within 2r of the line, both segments together
+};
+
+struct Corner {
+  std::array<std::uint32_t, 3> segments;
+  Eigen::Vector3d position;
+  std::array<double, 3> support;  // the three regression variances lambda2, m^2 (smaller is stabler)
+};
+
+struct FeatureOptions {
+  double search_radius = 0.05;   // r of the grow: points within 2r of a line or corner count as near
+  double min_angle_deg = 10.0;   // planes closer to parallel than this do not intersect
+  double low_percentile = 0.05;  // the support range along an edge
+  double high_percentile = 0.95;
+  std::uint32_t min_near_points = 5;  // per segment, to call it near an edge's line
+};
+
+struct Features {
+  std::vector<Edge> edges;
+  std::vector<Corner> corners;
+};
+
+// All viable pairs (edges) and triples (corners) of segments: planes not parallel, each
+// segment with points (a non-vanishing polygon), and each with points near the intersection.
+Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const FeatureOptions& options = {});
+
+}  // namespace plumb::reco
