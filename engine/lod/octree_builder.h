@@ -7,7 +7,9 @@
 //   3. chunking:   split the cube into chunks (octree cells) small enough to index in memory;
 //   4. distribute: read a third time, appending each point to its chunk's temporary file;
 //   5. index:      build each chunk's subtree in parallel (NodeIndexer), writing nodes as they
-//                  finish; then the levels above the chunks from the chunk roots' points;
+//                  finish; then the levels above the chunks from the chunk roots' points (held
+//                  in memory: about 0.5 % of the points; for inputs of billions of points this
+//                  part is not yet bounded by the budget);
 //   6. finish:     write the node index and the header, fsync, rename into place.
 // Temporary chunk files are unlinked as soon as they are created, so nothing is left behind
 // however the build ends; the output appears only when complete (AtomicFile).
