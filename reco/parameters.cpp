@@ -16,6 +16,22 @@
 
 namespace plumb::reco {
 
+ViewAtClick viewFromDistance(const Eigen::Vector3d& picked, double distance) {
+  ViewAtClick view;
+  view.view.setIdentity();
+  view.view.block<3, 1>(0, 3) = -(picked + Eigen::Vector3d(0, 0, distance));
+  const double f = 1.0 / std::tan(M_PI / 6.0);
+  const double near = 0.01, far = 10'000.0;
+  view.projection.setZero();
+  view.projection(0, 0) = f * view.viewport_height_px / view.viewport_width_px;
+  view.projection(1, 1) = f;
+  view.projection(2, 2) = (far + near) / (near - far);
+  view.projection(2, 3) = 2.0 * far * near / (near - far);
+  view.projection(3, 2) = -1.0;
+  view.picked = picked;
+  return view;
+}
+
 double pixelSizeAt(const ViewAtClick& view) {
   const Eigen::Vector4d camera = view.view * view.picked.homogeneous();
   const double p11 = view.projection(1, 1);

@@ -40,6 +40,11 @@ struct GrowParameters {
   double pixel_size_m;       // the projected size of a pixel at the picked point, for display
 };
 
+// The view of a 60-degree perspective camera on a 1920 x 1080 screen looking at `picked` from
+// `distance` metres: what the viewer shows when the user clicks there from that far (the
+// --view-distance of plumb grow).
+ViewAtClick viewFromDistance(const Eigen::Vector3d& picked, double distance);
+
 // The parameters for a click. The picked point must lie in front of a perspective camera.
 GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstants& constants = {});
 

@@ -50,24 +50,6 @@ struct TemporaryOctree {
   }
 };
 
-// The view of a 60-degree perspective camera on a 1920 x 1080 screen, `distance` in front of
-// the seed: what the viewer would show when the user clicks there from that far.
-reco::ViewAtClick viewFrom(const Eigen::Vector3d& seed, double distance) {
-  reco::ViewAtClick view;
-  view.view.setIdentity();
-  view.view.block<3, 1>(0, 3) = -(seed + Eigen::Vector3d(0, 0, distance));
-  const double f = 1.0 / std::tan(M_PI / 6.0);
-  const double near = 0.01, far = 10'000.0;
-  view.projection.setZero();
-  view.projection(0, 0) = f * 1080.0 / 1920.0;
-  view.projection(1, 1) = f;
-  view.projection(2, 2) = (far + near) / (near - far);
-  view.projection(2, 3) = 2.0 * far * near / (near - far);
-  view.projection(3, 2) = -1.0;
-  view.picked = seed;
-  return view;
-}
-
 nlohmann::json vector3(const Eigen::Vector3d& v) {
   return {v.x(), v.y(), v.z()};
 }
@@ -118,7 +100,8 @@ Command addGrowCommand(CLI::App& plumb) {
 
     reco::ParameterConstants constants;
     constants.plane_threshold_m = options->plane_threshold;
-    reco::GrowParameters parameters = reco::parametersForView(viewFrom(seed, options->view_distance), constants);
+    reco::GrowParameters parameters =
+        reco::parametersForView(reco::viewFromDistance(seed, options->view_distance), constants);
     if (!options->detail.empty()) {
       const double density = options->detail == "low"      ? constants.min_density
                              : options->detail == "medium" ? std::sqrt(constants.min_density * constants.max_density)
