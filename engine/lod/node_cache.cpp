@@ -96,11 +96,7 @@ std::shared_ptr<const NodePoints> NodeCache::get(const CellKey& key) {
   const NodeInfo* node = octree_->find(key);
   if (node == nullptr) return nullptr;
   bool must_load = false;
-  std::shared_ptr<Entry> entry;
-  {
-    const std::lock_guard lock(mutex_);
-    entry = acquire(*node, must_load);
-  }
+  const std::shared_ptr<Entry> entry = acquireLocked(*node, must_load);
   if (must_load) load(entry, *node);
   return wait(entry);
 }
@@ -109,14 +105,18 @@ std::shared_ptr<const NodePoints> NodeCache::tryGet(const CellKey& key) {
   const NodeInfo* node = octree_->find(key);
   if (node == nullptr) return nullptr;
   bool must_load = false;
-  std::shared_ptr<Entry> entry;
-  {
-    const std::lock_guard lock(mutex_);
-    entry = acquire(*node, must_load);
-    if (!must_load) return entry->loading || entry->error ? nullptr : entry->points;
+  const std::shared_ptr<Entry> entry = acquireLocked(*node, must_load);
+  if (must_load) {
+    background_->loads.run([this, entry, node] { load(entry, *node); });
+    return nullptr;
   }
-  background_->loads.run([this, entry, node] { load(entry, *node); });
-  return nullptr;
+  const std::lock_guard lock(mutex_);
+  return entry->loading || entry->error ? nullptr : entry->points;
+}
+
+std::shared_ptr<NodeCache::Entry> NodeCache::acquireLocked(const NodeInfo& node, bool& must_load) {
+  const std::lock_guard lock(mutex_);
+  return acquire(node, must_load);
 }
 
 void NodeCache::prefetch(const CellKey& key) {

@@ -49,7 +49,8 @@ class NodeCache {
  private:
   struct Entry;
   // Finds or creates the entry for `node`; returns whether this caller must load it.
-  std::shared_ptr<Entry> acquire(const NodeInfo& node, bool& must_load);
+  std::shared_ptr<Entry> acquire(const NodeInfo& node, bool& must_load);        // mutex_ held
+  std::shared_ptr<Entry> acquireLocked(const NodeInfo& node, bool& must_load);  // takes mutex_
   void load(const std::shared_ptr<Entry>& entry, const NodeInfo& node);
   std::shared_ptr<const NodePoints> wait(const std::shared_ptr<Entry>& entry);
   void evictOverBudget();
