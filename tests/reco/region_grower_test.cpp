@@ -147,6 +147,33 @@ TEST(RegionGrower, TheTwoFacesOfAThickWallStayApart) {
               0.03 * static_cast<double>(face));
 }
 
+//   +---------------------+
+//   |        floor        |   a 4 x 4 m floor with no points in a 0.8 x 0.8 m square: the scan
+//   |    +----+           |   shadow of an occluder. Growing from one side reaches all around
+//   |    |    |  seed     |   the hole: the segment gets every floor point.
+//   |    +----+           |
+//   +---------------------+
+TEST(RegionGrower, GrowthGoesAroundAScanShadow) {
+  test::TempDirectory dir;
+  lod::BuildOptions options;
+  options.sources = {test::generatedSource(80'000, [](std::uint64_t i) {
+    const double x = 4.0 * test::unitHash(i, 1), y = 4.0 * test::unitHash(i, 2);
+    const bool in_shadow = x > 1.2 && x < 2.0 && y > 1.2 && y < 2.0;
+    const double z = in_shadow ? NAN : 0.0005 * (test::unitHash(i, 3) - 0.5);
+    return test::withId(kUtm.x() + x, kUtm.y() + y, kUtm.z() + z, 0);
+  })};
+  options.output = dir.file("shadow.plumb");
+  options.leaf_max_points = 5000;
+  lod::buildOctree(options);
+  lod::NodeCache cache(lod::Octree::open(options.output), 256 << 20);
+  const GrowSnapshot result =
+      growRegions(cache, parametersForDensity(kUtm + Eigen::Vector3d(3.0, 1.6, 0.0), 1.0 / std::pow(0.03, 3), 0.3));
+  ASSERT_EQ(result.segments.size(), 1u);
+  const std::uint64_t floor = pointsOfPatchAtLevel(cache, result.level, 0);
+  EXPECT_NEAR(static_cast<double>(result.segments[0].points), static_cast<double>(floor),
+              0.02 * static_cast<double>(floor));
+}
+
 TEST(RegionGrower, ACancelledGrowStopsAtTheNextCell) {
   test::TempDirectory dir;
   const auto octree = buildPatches(dir, {{kUtm, {4, 0, 0}, {0, 4, 0}}}, 40'000);
