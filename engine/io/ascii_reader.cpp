@@ -206,8 +206,7 @@ class AsciiReader final : public PointReader {
     if (info_.attributes.intensity) {
       const double raw = value[kIntensity];
       const double scaled = pts_ ? (raw + 2048.0) * 16.0 : raw;
-      point.intensity =
-          std::isfinite(scaled) ? static_cast<std::uint16_t>(std::clamp(std::round(scaled), 0.0, 65535.0)) : 0;
+      point.intensity = intensityFrom(scaled);
     }
     deliver(batch, point,
             {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});

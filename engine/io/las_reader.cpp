@@ -34,6 +34,7 @@
 #include <limits>
 #include <string_view>
 
+#include "engine/io/byte_order.h"
 #include "engine/io/file_source.h"
 #include "engine/io/point_reader.h"
 
@@ -104,14 +105,6 @@ constexpr std::array<FormatLayout, kMaxPointFormat + 1> kFormats{{
     {59, 0, false, true, true, false},    // 9
     {67, 30, true, true, true, true},     // 10
 }};
-
-template <typename T>
-T loadLittleEndian(const std::byte* at) {
-  static_assert(std::endian::native == std::endian::little, "LAS decoding assumes a little-endian host");
-  T value;
-  std::memcpy(&value, at, sizeof(T));
-  return value;
-}
 
 // The shortest text that reads back as `value` ("0.001", not "0.001000").
 std::string shortest(double value) {

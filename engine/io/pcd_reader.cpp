@@ -37,6 +37,7 @@
 #include <limits>
 #include <optional>
 
+#include "engine/io/byte_order.h"
 #include "engine/io/file_source.h"
 #include "engine/io/lzf.h"
 #include "engine/io/point_reader.h"
@@ -67,31 +68,23 @@ struct Field {
 
 enum Role : int { kX, kY, kZ, kColour, kIntensity, kNx, kNy, kNz, kRoleCount };
 
-template <typename T>
-T loadLittle(const std::byte* p) {
-  std::array<std::byte, sizeof(T)> bytes;
-  std::memcpy(bytes.data(), p, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
-  return std::bit_cast<T>(bytes);
-}
-
 double decode(const std::byte* p, const Field& field) {
   const bool is_signed = field.type == 'I';
   switch (field.size) {
     case 1:
-      return is_signed ? static_cast<double>(loadLittle<std::int8_t>(p))
-                       : static_cast<double>(loadLittle<std::uint8_t>(p));
+      return is_signed ? static_cast<double>(loadLittleEndian<std::int8_t>(p))
+                       : static_cast<double>(loadLittleEndian<std::uint8_t>(p));
     case 2:
-      return is_signed ? static_cast<double>(loadLittle<std::int16_t>(p))
-                       : static_cast<double>(loadLittle<std::uint16_t>(p));
+      return is_signed ? static_cast<double>(loadLittleEndian<std::int16_t>(p))
+                       : static_cast<double>(loadLittleEndian<std::uint16_t>(p));
     case 4:
-      if (field.type == 'F') return loadLittle<float>(p);
-      return is_signed ? static_cast<double>(loadLittle<std::int32_t>(p))
-                       : static_cast<double>(loadLittle<std::uint32_t>(p));
+      if (field.type == 'F') return loadLittleEndian<float>(p);
+      return is_signed ? static_cast<double>(loadLittleEndian<std::int32_t>(p))
+                       : static_cast<double>(loadLittleEndian<std::uint32_t>(p));
     default:
-      if (field.type == 'F') return loadLittle<double>(p);
-      return is_signed ? static_cast<double>(loadLittle<std::int64_t>(p))
-                       : static_cast<double>(loadLittle<std::uint64_t>(p));
+      if (field.type == 'F') return loadLittleEndian<double>(p);
+      return is_signed ? static_cast<double>(loadLittleEndian<std::int64_t>(p))
+                       : static_cast<double>(loadLittleEndian<std::uint64_t>(p));
   }
 }
 
@@ -100,11 +93,6 @@ std::uint32_t packedFromText(double value, char type) {
   if (type == 'F') return std::bit_cast<std::uint32_t>(static_cast<float>(value));
   if (!std::isfinite(value) || value < -2147483648.0 || value > 4294967295.0) return 0;
   return value < 0 ? static_cast<std::uint32_t>(static_cast<std::int32_t>(value)) : static_cast<std::uint32_t>(value);
-}
-
-std::uint16_t toIntensity(double value) {
-  if (!std::isfinite(value)) return 0;
-  return static_cast<std::uint16_t>(std::clamp(std::round(value), 0.0, 65535.0));
 }
 
 bool validSize(char type, std::size_t size) {
@@ -367,8 +355,8 @@ class PcdReader final : public PointReader {
   void decompress() {
     std::array<std::byte, 8> sizes{};
     source_.readExactly(sizes, "the compressed block's sizes");
-    const std::uint64_t compressed = loadLittle<std::uint32_t>(sizes.data());
-    const std::uint64_t uncompressed = loadLittle<std::uint32_t>(sizes.data() + 4);
+    const std::uint64_t compressed = loadLittleEndian<std::uint32_t>(sizes.data());
+    const std::uint64_t uncompressed = loadLittleEndian<std::uint32_t>(sizes.data() + 4);
     const std::uint64_t needed = recordsBytes();
     if (needed > kMaxUncompressedBytes) {
       throw lineError(data_line_, declaredBytesText(needed) + ", more than the " +
@@ -429,7 +417,7 @@ class PcdReader final : public PointReader {
       }
     }
     const std::uint32_t packed =
-        info_.attributes.colour ? loadLittle<std::uint32_t>(at(static_cast<std::size_t>(roles_[kColour]))) : 0;
+        info_.attributes.colour ? loadLittleEndian<std::uint32_t>(at(static_cast<std::size_t>(roles_[kColour]))) : 0;
     emit(batch, value, packed);
   }
 
@@ -439,7 +427,7 @@ class PcdReader final : public PointReader {
       point.rgb = {widenColour(static_cast<std::uint8_t>(packed >> 16)),
                    widenColour(static_cast<std::uint8_t>(packed >> 8)), widenColour(static_cast<std::uint8_t>(packed))};
     }
-    if (info_.attributes.intensity) point.intensity = toIntensity(value[kIntensity]);
+    if (info_.attributes.intensity) point.intensity = intensityFrom(value[kIntensity]);
     deliver(batch, point,
             {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
   }

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <optional>
 
+#include "engine/io/byte_order.h"
 #include "engine/io/file_source.h"
 #include "engine/io/point_reader.h"
 #include "engine/io/text_numbers.h"
@@ -65,32 +66,24 @@ bool isFloat(Scalar type) {
   return type == Scalar::kFloat32 || type == Scalar::kFloat64;
 }
 
-template <typename T>
-T load(const std::byte* p, bool swap) {
-  std::array<std::byte, sizeof(T)> bytes;
-  std::memcpy(bytes.data(), p, sizeof(T));
-  if (swap) std::reverse(bytes.begin(), bytes.end());
-  return std::bit_cast<T>(bytes);
-}
-
 double decode(const std::byte* p, Scalar type, bool swap) {
   switch (type) {
     case Scalar::kInt8:
-      return load<std::int8_t>(p, false);
+      return loadBytes<std::int8_t>(p, false);
     case Scalar::kUInt8:
-      return load<std::uint8_t>(p, false);
+      return loadBytes<std::uint8_t>(p, false);
     case Scalar::kInt16:
-      return load<std::int16_t>(p, swap);
+      return loadBytes<std::int16_t>(p, swap);
     case Scalar::kUInt16:
-      return load<std::uint16_t>(p, swap);
+      return loadBytes<std::uint16_t>(p, swap);
     case Scalar::kInt32:
-      return load<std::int32_t>(p, swap);
+      return loadBytes<std::int32_t>(p, swap);
     case Scalar::kUInt32:
-      return load<std::uint32_t>(p, swap);
+      return loadBytes<std::uint32_t>(p, swap);
     case Scalar::kFloat32:
-      return load<float>(p, swap);
+      return loadBytes<float>(p, swap);
     case Scalar::kFloat64:
-      return load<double>(p, swap);
+      return loadBytes<double>(p, swap);
   }
   return 0.0;
 }
@@ -147,11 +140,6 @@ std::uint16_t toColour(double value, Scalar type) {
   if (type == Scalar::kUInt8) return widenColour(static_cast<std::uint8_t>(std::clamp(std::round(value), 0.0, 255.0)));
   const double scaled = isFloat(type) ? value * 65535.0 : value;
   return static_cast<std::uint16_t>(std::clamp(std::round(scaled), 0.0, 65535.0));
-}
-
-std::uint16_t toIntensity(double value) {
-  if (!std::isfinite(value)) return 0;
-  return static_cast<std::uint16_t>(std::clamp(std::round(value), 0.0, 65535.0));
 }
 
 std::vector<std::string_view> splitWords(std::string_view line) {
@@ -326,7 +314,7 @@ class PlyReader final : public PointReader {
       point.rgb = {toColour(value[kRed], type[kRed]), toColour(value[kGreen], type[kGreen]),
                    toColour(value[kBlue], type[kBlue])};
     }
-    if (info_.attributes.intensity) point.intensity = toIntensity(value[kIntensity]);
+    if (info_.attributes.intensity) point.intensity = intensityFrom(value[kIntensity]);
     deliver(batch, point,
             {static_cast<float>(value[kNx]), static_cast<float>(value[kNy]), static_cast<float>(value[kNz])});
   }

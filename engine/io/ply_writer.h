@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/core/atomic_file.h"
+#include "engine/io/byte_order.h"  // packLittleEndian, for row packers
 
 namespace plumb::io {
 
@@ -57,13 +58,5 @@ class PlyWriter {
   std::size_t row_bytes_ = 0;
   std::uint64_t row_count_ = 0;
 };
-
-// Appends the little-endian bytes of `value` to `out`; the helper every row packer uses.
-template <typename T>
-inline std::byte* packLittleEndian(std::byte* out, T value) {
-  static_assert(std::endian::native == std::endian::little, "PLY packing assumes a little-endian host");
-  std::memcpy(out, &value, sizeof(T));
-  return out + sizeof(T);
-}
 
 }  // namespace plumb::io

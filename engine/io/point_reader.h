@@ -9,6 +9,7 @@
 //
 // Not thread-safe: one thread reads one reader.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -122,6 +123,12 @@ std::unique_ptr<PointReader> openAscii(const std::string& path, const ReaderOpti
 // 8-bit colour to the 16-bit scale of PointRecord.
 constexpr std::uint16_t widenColour(std::uint8_t value) {
   return static_cast<std::uint16_t>(value * 257);
+}
+
+// An intensity value of a file, taken as 16-bit: rounded and clamped to 0..65535; 0 when NaN.
+inline std::uint16_t intensityFrom(double value) {
+  if (!std::isfinite(value)) return 0;
+  return static_cast<std::uint16_t>(std::clamp(std::round(value), 0.0, 65535.0));
 }
 
 }  // namespace plumb::io

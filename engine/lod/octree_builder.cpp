@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <unordered_map>
@@ -184,9 +185,11 @@ class Builder {
 
   // Reads every input once through a three-stage pipeline: reading (serial: readers are not
   // thread-safe), `prepare` (parallel, per batch) and `apply` (serial, in input order), so that
-  // parsing the next batch overlaps with the work on this one.
+  // parsing the next batch overlaps with the work on this one. `after_source`, if set, sees each
+  // reader once its input is read.
   template <typename Prepare, typename Apply>
-  void pipelinedPass(std::string_view phase, std::uint64_t total, Prepare&& prepare, Apply&& apply) {
+  void pipelinedPass(std::string_view phase, std::uint64_t total, Prepare&& prepare, Apply&& apply,
+                     const std::function<void(const BuildSource&, const io::PointReader&)>& after_source = {}) {
     constexpr std::size_t kLiveBatches = 4;
     // The batches circulate instead of being allocated anew: their buffers keep their capacity.
     std::array<Batch, kLiveBatches> storage;
@@ -199,35 +202,31 @@ class Builder {
       const std::unique_ptr<io::PointReader> reader = source.open();
       tbb::parallel_pipeline(
           kLiveBatches,
-          tbb::make_filter<void, Batch*>(tbb::filter_mode::serial_in_order,
-                                         [&](tbb::flow_control& control) -> Batch* {
-                                           Batch* batch = nullptr;
-                                           {
-                                             const std::lock_guard lock(free_mutex);
-                                             batch = free_batches.back();
-                                             free_batches.pop_back();
-                                           }
-                                           if (!reader->read(batch->points, kReadBatchPoints)) {
-                                             const std::lock_guard lock(free_mutex);
-                                             free_batches.push_back(batch);
-                                             control.stop();
-                                             return nullptr;
-                                           }
-                                           return batch;
-                                         }) &
-              tbb::make_filter<Batch*, Batch*>(tbb::filter_mode::parallel,
-                                               [&](Batch* batch) {
-                                                 prepare(*batch);
-                                                 return batch;
-                                               }) &
-              tbb::make_filter<Batch*, void>(tbb::filter_mode::serial_in_order, [&](Batch* batch) {
-                apply(*batch);
-                done += batch->points.size();
-                if (options_.progress) options_.progress(phase, done, total);
-                const std::lock_guard lock(free_mutex);
-                free_batches.push_back(batch);
-              }));
-      afterSource(source, *reader);
+          tbb::make_filter<void, Batch*>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) -> Batch* {
+            Batch* batch = nullptr;
+            {
+              const std::lock_guard lock(free_mutex);
+              batch = free_batches.back();
+              free_batches.pop_back();
+            }
+            if (!reader->read(batch->points, kReadBatchPoints)) {
+              const std::lock_guard lock(free_mutex);
+              free_batches.push_back(batch);
+              control.stop();
+              return nullptr;
+            }
+            return batch;
+          }) & tbb::make_filter<Batch*, Batch*>(tbb::filter_mode::parallel, [&](Batch* batch) {
+            prepare(*batch);
+            return batch;
+          }) & tbb::make_filter<Batch*, void>(tbb::filter_mode::serial_in_order, [&](Batch* batch) {
+            apply(*batch);
+            done += batch->points.size();
+            if (options_.progress) options_.progress(phase, done, total);
+            const std::lock_guard lock(free_mutex);
+            free_batches.push_back(batch);
+          }));
+      if (after_source) after_source(source, *reader);
     }
   }
 
@@ -239,13 +238,14 @@ class Builder {
     }
   }
 
-  // Called after each input's pass; the bounds pass collects what the reader reports.
-  void afterSource(const BuildSource& source, const io::PointReader& reader) {
-    if (!collecting_input_facts_) return;
+  // What a reader reports once its input is read: skipped points, attributes, ignored fields.
+  // Collected in the bounds pass only, which reads every input first.
+  void collectInputFacts(const BuildSource& source, const io::PointReader& reader) {
     header_.skipped_non_finite += reader.counts().non_finite;
     if (reader.info().attributes.colour) header_.attributes |= kHasColour;
     if (reader.info().attributes.intensity) header_.attributes |= kHasIntensity;
-    for (const std::string& field : reader.info().ignored_fields) report_.ignored_fields.push_back(source.name + ": " + field);
+    for (const std::string& field : reader.info().ignored_fields)
+      report_.ignored_fields.push_back(source.name + ": " + field);
   }
 
   void scanBounds() {
@@ -253,7 +253,6 @@ class Builder {
     b.min.fill(INFINITY);
     b.max.fill(-INFINITY);
     std::uint64_t count = 0;
-    collecting_input_facts_ = true;
     pipelinedPass(
         "reading bounds", 0,
         [](Batch& batch) {
@@ -273,8 +272,8 @@ class Builder {
             b.max[a] = std::max(b.max[a], batch.box.max[a]);
           }
           count += batch.points.size();
-        });
-    collecting_input_facts_ = false;
+        },
+        [&](const BuildSource& source, const io::PointReader& reader) { collectInputFacts(source, reader); });
     if (count == 0) {
       throw Error("the input holds no points" +
                   std::string(header_.skipped_non_finite > 0 ? " with finite coordinates" : ""));
@@ -551,7 +550,6 @@ class Builder {
   std::mutex output_mutex_;
   std::vector<NodeInfo> nodes_;
   std::uint64_t indexed_points_ = 0;
-  bool collecting_input_facts_ = false;
 };
 
 }  // namespace
