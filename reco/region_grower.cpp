@@ -1,28 +1,41 @@
-// Seeded incremental region growing, paper section 3.5 (the seed of 3.4 included).
+// Seeded incremental region growing, paper section 3.5 (the seed of 3.4 and the adaptive
+// resolution of 3.6 included).
 //
 //   1. Level: the octree level whose spacing matches the wanted density d.
 //   2. Seed: the points of that level within r_s of the picked point; up to three planes by
 //      RANSAC (seed_planes.h); each starts a regression with its inliers.
-//   3. Loop over a queue of level-L cells, nearest to the seed first. A cell holds the points
+//   3. Loop over a queue of cells, nearest to the seed first. A cell of level L holds the points
 //      of levels 0..L in it (lod::pointsInCell). Its frontier is the assigned points within r
 //      of it; breadth-first from the frontier, an unassigned point within r of an assigned one
 //      joins the segment with the nearest plane among those within t_p whose points are within r
 //      of it (a point joins at most one segment). New points extend the frontier, also into the
-//      neighbouring cells they are within r of, which are queued (again) for processing.
-//   4. After a cell that added points, refit the grown planes and publish a snapshot.
-//   5. Stop when the queue is empty (converged) or the cancel flag is set (checked per cell).
-//   6. Intersect the segments for their edges and corners (edges_and_corners.h).
+//      neighbouring cells they are within r of, which are claimed and queued (again).
+//   4. Adaptive resolution, as a cell leaves the queue: where the observed density is below
+//      refine_below x d and the octree has finer points, the cell is replaced by its children.
+//      Where it is above coarsen_above x d, the level is locked: the cells inside the parents of
+//      the cells claimed so far are finished at that level (mark), the others wait; then those
+//      that wait move to their parents if the density is still too high (finish). Points are
+//      octree identities (lod::PointRef), so a point met again at another level is known.
+//   5. After a cell that added points, refit the grown planes and publish a snapshot: planes,
+//      outlines (outline.h) and the edges and corners between the segments (edges_and_corners.h),
+//      the last two redrawn as the segments grow by a quarter.
+//   6. Stop when the queue is empty (converged) or the cancel flag is set (checked per cell);
+//      the final result has everything drawn anew.
 
 #include "reco/region_grower.h"
 
+#include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <queue>
 #include <unordered_map>
 #include <unordered_set>
 
-#include "engine/lod/lod_query.h"
+#include "reco/cell_claims.h"
+#include "reco/point_grid.h"
 #include "reco/seed_planes.h"
 
 namespace plumb::reco {
@@ -31,44 +44,43 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using lod::CellKey;
 
-// Integer grid coordinates of a position relative to an origin, packed into one key.
-struct GridKey {
-  std::int64_t x, y, z;
-  bool operator==(const GridKey&) const = default;
-};
-struct GridKeyHash {
-  std::size_t operator()(const GridKey& k) const {
-    return static_cast<std::size_t>((static_cast<std::uint64_t>(k.x) * 73856093ULL) ^
-                                    (static_cast<std::uint64_t>(k.y) * 19349663ULL) ^
-                                    (static_cast<std::uint64_t>(k.z) * 83492791ULL));
-  }
-};
+std::array<double, 3> array(const Eigen::Vector3d& p) {
+  return {p.x(), p.y(), p.z()};
+}
 
-// A uniform grid of cell size `step` over positions near `origin` (kept small: UTM coordinates
-// divided by a few centimetres would still fit, but relative ones keep the hash well spread).
-class Grid {
+// Which segment each octree point joined: one byte per point of every node the grow touched
+// (0 for none, s + 1 for segment s). A point has one identity at every level, so this is what
+// keeps a point from being counted twice when the grow switches levels.
+class Membership {
  public:
-  Grid(const Eigen::Vector3d& origin, double step) : origin_(origin), inverse_(1.0 / step) {}
-  GridKey keyOf(const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d g = (p - origin_) * inverse_;
-    return {static_cast<std::int64_t>(std::floor(g.x())), static_cast<std::int64_t>(std::floor(g.y())),
-            static_cast<std::int64_t>(std::floor(g.z()))};
+  explicit Membership(const lod::Octree& octree) : octree_(octree) {}
+  bool assigned(const lod::PointRef& ref) { return node(ref.node)[ref.index] != 0; }
+  void assign(const lod::PointRef& ref, std::uint32_t segment) {
+    node(ref.node)[ref.index] = static_cast<std::uint8_t>(segment + 1);
   }
-  // Calls visit(key) for the 27 grid cells around p's cell: all that can hold points within
-  // one step of p.
-  template <typename Visit>
-  void forEachAround(const Eigen::Vector3d& p, Visit&& visit) const {
-    const GridKey k = keyOf(p);
-    for (std::int64_t dz = -1; dz <= 1; ++dz) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dx = -1; dx <= 1; ++dx) visit(GridKey{k.x + dx, k.y + dy, k.z + dz});
+  std::vector<std::vector<lod::PointRef>> members(std::size_t segments) const {
+    std::vector<std::vector<lod::PointRef>> result(segments);
+    for (const auto& [node, flags] : nodes_) {
+      for (std::uint32_t i = 0; i < flags.size(); ++i) {
+        if (flags[i] != 0) result[flags[i] - 1u].push_back({node, i});
       }
     }
+    for (auto& list : result) {
+      std::sort(list.begin(), list.end(), [](const lod::PointRef& a, const lod::PointRef& b) {
+        return std::tie(a.node, a.index) < std::tie(b.node, b.index);
+      });
+    }
+    return result;
   }
 
  private:
-  Eigen::Vector3d origin_;
-  double inverse_;
+  std::vector<std::uint8_t>& node(std::uint32_t index) {
+    auto [it, inserted] = nodes_.try_emplace(index);
+    if (inserted) it->second.assign(octree_.nodes()[index].point_count, 0);
+    return it->second;
+  }
+  const lod::Octree& octree_;
+  std::unordered_map<std::uint32_t, std::vector<std::uint8_t>> nodes_;
 };
 
 struct Assigned {
@@ -77,10 +89,17 @@ struct Assigned {
 };
 
 struct CellState {
+  bool loaded = false;
+  bool processed = false;
   std::vector<Eigen::Vector3d> points;
-  std::vector<std::uint8_t> assigned;
-  std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> by_grid;  // unassigned and assigned
+  std::vector<lod::PointRef> refs;
+  std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> by_grid;
   std::vector<Assigned> frontier;  // assigned points within r of this cell, not yet expanded here
+};
+
+struct Candidate {
+  int segment = -1;             // the segment the point joins, -1 for none
+  double nearest_m = INFINITY;  // distance to the nearest assigned point (any segment)
 };
 
 class Grower {
@@ -94,13 +113,23 @@ class Grower {
         progress_(progress),
         radius_(parameters.search_radius_m),
         grid_(parameters.seed, parameters.search_radius_m),
+        claims_(octree_.cube()),
+        membership_(octree_),
         start_(Clock::now()) {
-    snapshot_.level = octree_.levelForSpacing(parameters.spacing_m);
+    base_level_ = octree_.levelForSpacing(parameters.spacing_m);
+    snapshot_.level = base_level_;
+    snapshot_.finest_level = snapshot_.coarsest_level = base_level_;
+    working_level_ = base_level_;
   }
 
   GrowSnapshot run() {
     seed();
-    while (!queue_.empty()) {
+    for (;;) {
+      if (queue_.empty()) {
+        if (!locked_level_) break;
+        unlockLevel();
+        continue;
+      }
       if (options_.cancel != nullptr && options_.cancel->load()) {
         snapshot_.cancelled = true;
         return finish(false);
@@ -108,25 +137,28 @@ class Grower {
       const CellKey key = queue_.top().second;
       queue_.pop();
       queued_.erase(key);
+      if (!claims_.claimed(key)) continue;  // replaced by its children or parent since it was queued
+      if (adapt(key)) continue;
       if (processCell(key)) publish();
     }
     return finish(true);
   }
 
  private:
-  std::array<double, 3> array(const Eigen::Vector3d& p) const { return {p.x(), p.y(), p.z()}; }
+  // --- cells and claims ---------------------------------------------------------------------
 
-  CellState& cell(const CellKey& key) {
-    auto [it, inserted] = cells_.try_emplace(key);
-    if (inserted) {
-      for (const auto& p : lod::pointsInCell(cache_, key)) {
-        const Eigen::Vector3d position(p[0], p[1], p[2]);
-        it->second.by_grid[grid_.keyOf(position)].push_back(static_cast<std::uint32_t>(it->second.points.size()));
-        it->second.points.push_back(position);
+  CellState& loaded(const CellKey& key) {
+    CellState& state = cells_[key];
+    if (!state.loaded) {
+      state.loaded = true;
+      for (const lod::CellPoint& p : lod::pointsInCell(cache_, key)) {
+        const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
+        state.by_grid[grid_.keyOf(position)].push_back(static_cast<std::uint32_t>(state.points.size()));
+        state.points.push_back(position);
+        state.refs.push_back(p.ref);
       }
-      it->second.assigned.assign(it->second.points.size(), 0);
     }
-    return it->second;
+    return state;
   }
 
   void enqueue(const CellKey& key) {
@@ -134,24 +166,154 @@ class Grower {
     queue_.push({octree_.cube().squaredDistance(key, array(parameters_.seed)), key});
   }
 
-  // The level-L cells within r of p: its own and those whose faces are nearer than r.
-  std::vector<CellKey> cellsNear(const Eigen::Vector3d& p) const {
-    std::vector<CellKey> keys;
-    for (int dz = -1; dz <= 1; ++dz) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const Eigen::Vector3d q = p + radius_ * Eigen::Vector3d(dx, dy, dz);
-          const CellKey key = octree_.cube().cellAt(array(q), snapshot_.level);
-          if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  // Hands p to the frontier of every claimed cell within r of it other than the one being
+  // processed (whose breadth-first search has p already), claiming cells where none is yet.
+  void spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment) {
+    // Cells are at least 64 search radii wide: only the sides of the processed cell's box that p
+    // is within r of lead to a neighbour (during the seed, with no cell processed, all do).
+    std::array<std::array<int, 3>, 3> steps{};  // per axis: the offsets to try, -1, 0 or +1
+    std::array<std::size_t, 3> step_count{};
+    for (std::size_t a = 0; a < 3; ++a) {
+      steps[a][step_count[a]++] = 0;
+      if (!processing_box_ || p[static_cast<Eigen::Index>(a)] - radius_ <= processing_box_->min[a]) {
+        steps[a][step_count[a]++] = -1;
+      }
+      if (!processing_box_ || p[static_cast<Eigen::Index>(a)] + radius_ >= processing_box_->max[a]) {
+        steps[a][step_count[a]++] = 1;
+      }
+    }
+    if (step_count[0] * step_count[1] * step_count[2] == 1) return;
+    std::array<CellKey, 27> seen;
+    std::size_t count = 0;
+    for (std::size_t iz = 0; iz < step_count[2]; ++iz) {
+      for (std::size_t iy = 0; iy < step_count[1]; ++iy) {
+        for (std::size_t ix = 0; ix < step_count[0]; ++ix) {
+          const Eigen::Vector3d q = p + radius_ * Eigen::Vector3d(steps[0][ix], steps[1][iy], steps[2][iz]);
+          bool created = false;
+          const CellKey key = claims_.claimAt(array(q), working_level_, octree_.header().depth, created);
+          const auto end = seen.begin() + static_cast<std::ptrdiff_t>(count);
+          if (std::find(seen.begin(), end, key) != end) continue;
+          seen[count++] = key;
+          if (processing_ && key == *processing_) continue;
+          cells_[key].frontier.push_back({p, segment});
+          enqueue(key);
         }
       }
     }
-    return keys;
   }
 
-  // Records p as assigned to `segment`: it joins the regression and every nearby cell's frontier.
+  // --- adaptive resolution (section 3.6) -----------------------------------------------------
+
+  // The observed areal density relative to the wanted one; nullopt until enough points tell.
+  std::optional<double> densityRatio() const {
+    if (front_samples_ < kMinFrontSamples || front_spacing_ <= 0.0) return std::nullopt;
+    const double ratio = parameters_.spacing_m / front_spacing_;
+    return ratio * ratio;
+  }
+
+  // Applies the adaptive resolution to `key` as it leaves the queue. Returns true when the cell
+  // is not to be processed now (replaced, or waiting for a level change).
+  bool adapt(const CellKey& key) {
+    if (locked_level_) {
+      // Finishing: only the marked cells of the locked level go on; the others wait.
+      if (key.level == *locked_level_ && !marked_parents_.contains(*key.parent())) {
+        waiting_.push_back(key);
+        return true;
+      }
+      return false;
+    }
+    const auto ratio = densityRatio();
+    if (!options_.adaptive_resolution || !ratio) return false;
+    if (*ratio < options_.refine_below && !cells_[key].processed && key.level < octree_.header().depth &&
+        key.level < base_level_ + options_.max_refine_levels) {
+      const lod::NodeInfo* node = octree_.find(key);
+      if (node != nullptr && node->child_mask != 0) {  // elsewhere the finer levels add no point
+        replaceByChildren(key);
+        return true;
+      }
+    }
+    if (*ratio > options_.coarsen_above && key.level > base_level_) {
+      lockLevel(key.level);
+      return adapt(key);
+    }
+    return false;
+  }
+
+  void replaceByChildren(const CellKey& key) {
+    std::vector<Assigned> frontier = std::move(cells_[key].frontier);
+    cells_.erase(key);
+    claims_.release(key);
+    for (const CellKey& child : key.children()) {
+      claims_.claim(child);
+      CellState& state = cells_[child];
+      for (const Assigned& a : frontier) {
+        if (octree_.cube().squaredDistance(child, array(a.position)) <= radius_ * radius_) state.frontier.push_back(a);
+      }
+      if (!state.frontier.empty()) enqueue(child);
+    }
+    ++snapshot_.refinements;
+    working_level_ = std::max(working_level_, key.level + 1);
+    front_samples_ = 0;  // the next switch waits for what the new level shows
+  }
+
+  // Mark: the cells of `level` inside the parents of the cells claimed at that level so far
+  // (processed, queued or idle siblings) are finished at this level before any of it moves up.
+  void lockLevel(std::uint32_t level) {
+    locked_level_ = level;
+    marked_parents_.clear();
+    for (const CellKey& key : claims_.cells()) {
+      if (key.level == level) marked_parents_.insert(*key.parent());
+    }
+  }
+
+  // Finish: the marked cells are done; each group of waiting cells moves to its parent if the
+  // density is still too high there and nothing inside that parent was processed.
+  void unlockLevel() {
+    const std::uint32_t level = *locked_level_;
+    locked_level_.reset();
+    const auto ratio = densityRatio();
+    const bool coarsen = ratio && *ratio > options_.coarsen_above;
+    std::map<CellKey, std::vector<CellKey>> by_parent;
+    for (const CellKey& key : waiting_) {
+      if (claims_.claimed(key)) by_parent[*key.parent()].push_back(key);
+    }
+    waiting_.clear();
+    for (const auto& [parent, children] : by_parent) {
+      if (coarsen && canMerge(parent)) {
+        std::vector<Assigned> frontier;
+        for (const CellKey& child : parent.children()) {
+          if (!claims_.claimed(child)) continue;
+          auto& moved = cells_[child].frontier;
+          frontier.insert(frontier.end(), moved.begin(), moved.end());
+          cells_.erase(child);
+          claims_.release(child);
+        }
+        claims_.claim(parent);
+        cells_[parent].frontier = std::move(frontier);
+        enqueue(parent);
+        ++snapshot_.coarsenings;
+        front_samples_ = 0;
+      } else {
+        for (const CellKey& child : children) enqueue(child);
+      }
+    }
+    working_level_ = coarsen ? level - 1 : level;
+  }
+
+  // Whether the children of `parent` can give way to it: none processed, none with claims below.
+  bool canMerge(const CellKey& parent) {
+    for (const CellKey& child : parent.children()) {
+      if (claims_.claimedBelow(child)) return false;
+      if (claims_.claimed(child) && cells_[child].processed) return false;
+    }
+    return true;
+  }
+
+  // --- growing (section 3.5) ------------------------------------------------------------------
+
+  // Records point i of a cell as joining `segment`.
   void assign(CellState& state, std::uint32_t index, std::uint32_t segment) {
-    state.assigned[index] = 1;
+    membership_.assign(state.refs[index], segment);
     const Eigen::Vector3d& p = state.points[index];
     regressions_[segment].add(p);
     segment_points_[segment].push_back(p);
@@ -161,34 +323,85 @@ class Grower {
     // current regression): refit whenever the support has grown by a tenth, so a seed plane
     // from a few points straightens out long before its error matters, at O(log n) refits.
     if (regressions_[segment].count() >= fitted_count_[segment] + fitted_count_[segment] / 10 + 8) refit(segment);
-    for (const CellKey& key : cellsNear(p)) {
-      if (processing_ && key == *processing_) continue;  // its breadth-first queue has p already
-      cell(key).frontier.push_back({p, segment});
-      enqueue(key);
+    spreadFrontier(p, segment);
+  }
+
+  // The median distance from a point to its nearest other point, over a sample of `points`, as
+  // far as `step` (farther neighbours count as `step`). Duplicates (distance 0) are no neighbours.
+  static double medianNearestDistance(const std::vector<Eigen::Vector3d>& points, double step) {
+    if (points.size() < 2) return 0.0;
+    PointGrid grid(points.front(), step);
+    std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> cells;
+    for (std::uint32_t i = 0; i < points.size(); ++i) cells[grid.keyOf(points[i])].push_back(i);
+    constexpr std::size_t kSamples = 512;
+    const std::size_t stride = std::max<std::size_t>(1, points.size() / kSamples);
+    std::vector<double> nearest;
+    for (std::size_t i = 0; i < points.size(); i += stride) {
+      double best2 = step * step;
+      grid.forEachAround(points[i], [&](const GridKey& key) {
+        const auto it = cells.find(key);
+        if (it == cells.end()) return;
+        for (std::uint32_t j : it->second) {
+          const double d2 = (points[j] - points[i]).squaredNorm();
+          if (d2 > 0.0 && d2 < best2) best2 = d2;
+        }
+      });
+      nearest.push_back(std::sqrt(best2));
     }
+    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
+    return nearest[nearest.size() / 2];
+  }
+
+  // Section 3.7: r is twice the mean point spacing. The spacing d asks for is what the octree
+  // gives where the scan is dense enough; where it is sparser (a distant wall, or --detail full,
+  // which asks for the deepest level's spacing), the points are farther apart than d implies and
+  // a search radius of twice d's spacing finds no neighbours. The seed points tell the spacing the
+  // data has, and r follows the larger of the two. The density the grow aims for stays d: where
+  // the octree has finer points further on, the adaptive resolution goes and gets them.
+  void adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points) {
+    const double data_spacing = medianNearestDistance(seed_points, 0.5 * parameters_.seed_radius_m);
+    snapshot_.data_spacing_m = data_spacing;
+    if (2.0 * data_spacing > radius_) {
+      radius_ = std::min(2.0 * data_spacing, 0.5 * parameters_.seed_radius_m);
+      grid_ = PointGrid(parameters_.seed, radius_);
+    }
+    snapshot_.search_radius_m = radius_;
   }
 
   void seed() {
     const double rs = parameters_.seed_radius_m;
     const auto seed_array = array(parameters_.seed);
-    const CellKey low =
-        octree_.cube().cellAt({seed_array[0] - rs, seed_array[1] - rs, seed_array[2] - rs}, snapshot_.level);
-    const CellKey high =
-        octree_.cube().cellAt({seed_array[0] + rs, seed_array[1] + rs, seed_array[2] + rs}, snapshot_.level);
     std::vector<Eigen::Vector3d> points;
     std::vector<std::pair<CellKey, std::uint32_t>> origin;
+    std::vector<CellKey> seed_cells;
+    // Every cell of the box around the sphere, also those without a node of their own: where a
+    // branch ends in a leaf above the level, the cell's points come from its ancestors.
+    const CellKey low =
+        octree_.cube().cellAt({seed_array[0] - rs, seed_array[1] - rs, seed_array[2] - rs}, base_level_);
+    const CellKey high =
+        octree_.cube().cellAt({seed_array[0] + rs, seed_array[1] + rs, seed_array[2] + rs}, base_level_);
     for (std::uint32_t z = low.z; z <= high.z; ++z) {
       for (std::uint32_t y = low.y; y <= high.y; ++y) {
         for (std::uint32_t x = low.x; x <= high.x; ++x) {
-          const CellKey key{snapshot_.level, x, y, z};
+          const CellKey key{base_level_, x, y, z};
           if (octree_.cube().squaredDistance(key, seed_array) > rs * rs) continue;
-          CellState& state = cell(key);
-          for (std::uint32_t i = 0; i < state.points.size(); ++i) {
-            if ((state.points[i] - parameters_.seed).squaredNorm() <= rs * rs) {
-              points.push_back(state.points[i]);
-              origin.emplace_back(key, i);
-            }
+          seed_cells.push_back(key);
+          for (const lod::CellPoint& p : lod::pointsInCell(cache_, key)) {
+            const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
+            if ((position - parameters_.seed).squaredNorm() <= rs * rs) points.push_back(position);
           }
+        }
+      }
+    }
+    adaptToDataSpacing(points);
+    points.clear();
+    for (const CellKey& key : seed_cells) {
+      claims_.claim(key);
+      CellState& state = loaded(key);
+      for (std::uint32_t i = 0; i < state.points.size(); ++i) {
+        if ((state.points[i] - parameters_.seed).squaredNorm() <= rs * rs) {
+          points.push_back(state.points[i]);
+          origin.emplace_back(key, i);
         }
       }
     }
@@ -201,48 +414,69 @@ class Grower {
     regressions_.resize(planes.size());
     planes_.resize(planes.size());
     fitted_count_.assign(planes.size(), 0);
+    thresholds_.assign(planes.size(), parameters_.plane_threshold_m);
     segment_points_.resize(planes.size());
     grown_.assign(planes.size(), false);
     for (std::uint32_t s = 0; s < planes.size(); ++s) {
       planes_[s] = planes[s].plane;  // the RANSAC refit, until the regression takes over
-      for (std::uint32_t i : planes[s].inliers) assign(cell(origin[i].first), origin[i].second, s);
+      updateThreshold(s);
+      for (std::uint32_t i : planes[s].inliers) {
+        CellState& state = cells_[origin[i].first];
+        if (!membership_.assigned(state.refs[origin[i].second])) assign(state, origin[i].second, s);
+      }
       refit(s);
     }
     snapshot_.points_tested += points.size();
     if (!planes.empty()) publish();
   }
 
-  // The segment an unassigned point p joins: the nearest plane within t_p among the segments
-  // with an assigned point within r of p; -1 for none.
-  int bestSegment(const Eigen::Vector3d& p) {
-    int best = -1;
-    double best_distance = parameters_.plane_threshold_m;
+  // The segment an unassigned point p joins: the nearest plane within its threshold among the segments
+  // with an assigned point within r of p; and how far the nearest assigned point is.
+  Candidate bestSegment(const Eigen::Vector3d& p) {
+    Candidate best;
+    double best_distance = INFINITY;
+    double nearest2 = INFINITY;
     std::uint32_t seen_mask = 0;
     grid_.forEachAround(p, [&](const GridKey& key) {
       const auto it = assigned_.find(key);
       if (it == assigned_.end()) return;
       for (const Assigned& a : it->second) {
+        const double d2 = (a.position - p).squaredNorm();
+        if (d2 > radius_ * radius_) continue;
+        nearest2 = std::min(nearest2, d2);
         if ((seen_mask >> a.segment) & 1u) continue;
-        if ((a.position - p).squaredNorm() > radius_ * radius_) continue;
         seen_mask |= 1u << a.segment;
         ++snapshot_.points_tested;
         const Plane& plane = planes_[a.segment];
         if (!plane.valid) continue;
         const double d = plane.distance(p);
-        if (d < best_distance) {
+        if (d < thresholds_[a.segment] && d < best_distance) {
           best_distance = d;
-          best = static_cast<int>(a.segment);
+          best.segment = static_cast<int>(a.segment);
         }
       }
     });
+    best.nearest_m = std::sqrt(nearest2);
     return best;
+  }
+
+  void observeSpacing(double nearest_m) {
+    // A running mean over the last hundred-odd points: the density where the front is now.
+    constexpr double kWeight = 1.0 / 128.0;
+    front_spacing_ = front_samples_ == 0 ? nearest_m : front_spacing_ + kWeight * (nearest_m - front_spacing_);
+    ++front_samples_;
   }
 
   // Breadth-first from the cell's frontier; returns whether any point was added.
   bool processCell(const CellKey& key) {
     ++snapshot_.cells_visited;
+    snapshot_.finest_level = std::max(snapshot_.finest_level, key.level);
+    snapshot_.coarsest_level = std::min(snapshot_.coarsest_level, key.level);
     processing_ = key;
-    CellState& state = cell(key);
+    processing_box_ = octree_.cube().cellBox(key);
+    working_level_ = key.level;  // new neighbours start at this cell's level
+    CellState& state = loaded(key);
+    state.processed = true;
     std::vector<Assigned> queue = std::move(state.frontier);
     state.frontier.clear();
     bool added = false;
@@ -252,21 +486,22 @@ class Grower {
         const auto it = state.by_grid.find(grid_key);
         if (it == state.by_grid.end()) return;
         for (std::uint32_t i : it->second) {
-          if (state.assigned[i]) continue;
+          if (membership_.assigned(state.refs[i])) continue;
           const double distance = (state.points[i] - from.position).norm();
           if (distance > radius_) continue;
-          const int segment = bestSegment(state.points[i]);
-          if (segment < 0) continue;
-          // assign() may add to this cell's frontier too; the local queue carries on instead.
-          assign(state, i, static_cast<std::uint32_t>(segment));
-          queue.push_back({state.points[i], static_cast<std::uint32_t>(segment)});
+          const Candidate candidate = bestSegment(state.points[i]);
+          if (candidate.segment < 0) continue;
+          assign(state, i, static_cast<std::uint32_t>(candidate.segment));
+          queue.push_back({state.points[i], static_cast<std::uint32_t>(candidate.segment)});
           neighbour_distance_sum_ += distance;
           ++neighbour_distance_count_;
+          observeSpacing(candidate.nearest_m);
           added = true;
         }
       });
     }
     processing_.reset();
+    processing_box_.reset();
     if (added) {
       for (std::uint32_t s = 0; s < regressions_.size(); ++s) {
         if (grown_[s]) refit(s);
@@ -279,58 +514,117 @@ class Grower {
   void refit(std::uint32_t segment) {
     planes_[segment] = regressions_[segment].fit();
     fitted_count_[segment] = regressions_[segment].count();
+    updateThreshold(segment);
   }
 
-  void fillSnapshot() {
-    snapshot_.segments.clear();
+  // A point joins a segment within t_p of its plane, or within noise_sigmas times the plane's
+  // RMS where that is tighter (but never below min_threshold_fraction t_p). t_p is the user's
+  // precision; the RMS is what the scanner's noise is. Points of a neighbouring surface that lie
+  // within t_p of the plane, the bottom strip of a stair riser beside its tread, say, would
+  // otherwise join, tilt the plane towards that surface and let the growth creep up it.
+  void updateThreshold(std::uint32_t segment) {
+    const double tp = parameters_.plane_threshold_m;
+    double threshold = tp;
+    if (options_.noise_sigmas > 0.0 && planes_[segment].valid) {
+      threshold = std::clamp(options_.noise_sigmas * planes_[segment].rms, options_.min_threshold_fraction * tp, tp);
+    }
+    thresholds_[segment] = threshold;
+  }
+
+  // --- results --------------------------------------------------------------------------------
+
+  // Fills the snapshot; outlines and features are redrawn where the segments have grown enough
+  // since they were last drawn (everything when `final`).
+  void fillSnapshot(bool final) {
+    snapshot_.segments.resize(regressions_.size());
+    outlined_count_.resize(regressions_.size(), 0);
+    std::uint64_t total = 0;
     for (std::size_t s = 0; s < regressions_.size(); ++s) {
-      snapshot_.segments.push_back({planes_[s], regressions_[s].count()});
+      SegmentSnapshot& segment = snapshot_.segments[s];
+      segment.plane = planes_[s];
+      segment.points = regressions_[s].count();
+      total += segment.points;
+      if (!planes_[s].valid) {
+        segment.outline.reset();
+      } else if (final || segment.points >= outlined_count_[s] + outlined_count_[s] / 4 + 1) {
+        OutlineOptions outline;
+        outline.alpha_m = radius_;
+        outline.cell_m = radius_ / 2.0;
+        segment.outline = std::make_shared<const PlaneOutline>(outlineOnPlane(planes_[s], segment_points_[s], outline));
+        outlined_count_[s] = segment.points;
+      }
+    }
+    if (final || total >= featured_total_ + featured_total_ / 4 + 1) {
+      std::vector<SegmentGeometry> geometry;
+      for (std::size_t s = 0; s < regressions_.size(); ++s) geometry.push_back({planes_[s], segment_points_[s]});
+      FeatureOptions features;
+      features.search_radius = radius_;
+      Features found = findEdgesAndCorners(geometry, features);
+      snapshot_.edges = std::move(found.edges);
+      snapshot_.corners = std::move(found.corners);
+      featured_total_ = total;
     }
     snapshot_.mean_neighbour_distance =
         neighbour_distance_count_ > 0 ? neighbour_distance_sum_ / static_cast<double>(neighbour_distance_count_) : 0.0;
+    snapshot_.front_spacing_m = front_spacing_;
     snapshot_.elapsed_ms = std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
   }
 
   void publish() {
-    fillSnapshot();
+    fillSnapshot(false);
     if (progress_) progress_(snapshot_);
   }
 
   GrowSnapshot finish(bool converged) {
     snapshot_.converged = converged;
-    fillSnapshot();
-    std::vector<SegmentGeometry> geometry;
-    for (std::size_t s = 0; s < regressions_.size(); ++s) geometry.push_back({planes_[s], segment_points_[s]});
-    FeatureOptions features;
-    features.search_radius = radius_;
-    Features found = findEdgesAndCorners(geometry, features);
-    snapshot_.edges = std::move(found.edges);
-    snapshot_.corners = std::move(found.corners);
+    fillSnapshot(true);
+    if (options_.collect_members) {
+      auto members = membership_.members(regressions_.size());
+      for (std::size_t s = 0; s < members.size(); ++s) snapshot_.segments[s].members = std::move(members[s]);
+    }
     return snapshot_;
   }
+
+  static constexpr std::uint64_t kMinFrontSamples = 32;
 
   lod::NodeCache& cache_;
   const lod::Octree& octree_;
   GrowParameters parameters_;
   GrowOptions options_;
   const GrowProgress& progress_;
-  double radius_;
-  Grid grid_;
+  double radius_;          // r: the parameters', or wider where the data is sparser (adaptToDataSpacing)
+  PointGrid grid_;
+  CellClaims claims_;
+  Membership membership_;
   Clock::time_point start_;
+  std::uint32_t base_level_ = 0;
+  std::uint32_t working_level_ = 0;  // the level new cells are claimed at
 
   GrowSnapshot snapshot_;
   std::vector<PlaneRegression> regressions_;
   std::vector<Plane> planes_;                                 // the regressions' planes, refitted as they grow
   std::vector<std::uint64_t> fitted_count_;                   // regression size at the last refit
+  std::vector<double> thresholds_;                            // per segment: what a point may be off its plane
   std::vector<std::vector<Eigen::Vector3d>> segment_points_;  // for the edges and corners
   std::vector<bool> grown_;
+  std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
+  std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found
   std::unordered_map<CellKey, CellState, lod::CellKeyHash> cells_;
   std::unordered_map<GridKey, std::vector<Assigned>, GridKeyHash> assigned_;
   std::priority_queue<std::pair<double, CellKey>, std::vector<std::pair<double, CellKey>>, std::greater<>> queue_;
   std::unordered_set<CellKey, lod::CellKeyHash> queued_;
   std::optional<CellKey> processing_;  // the cell whose breadth-first search is running
+  std::optional<lod::Box3> processing_box_;
   double neighbour_distance_sum_ = 0.0;
   std::uint64_t neighbour_distance_count_ = 0;
+  double front_spacing_ = 0.0;
+  std::uint64_t front_samples_ = 0;
+
+  // Mark and finish (section 3.6): while a level is locked, its cells outside the marked
+  // parents wait.
+  std::optional<std::uint32_t> locked_level_;
+  std::unordered_set<CellKey, lod::CellKeyHash> marked_parents_;
+  std::vector<CellKey> waiting_;
 };
 
 }  // namespace

@@ -2,22 +2,22 @@
 // The interactive region growing loop (paper section 3.5) on an out-of-core octree: from the
 // seed planes around a picked point, add the neighbouring points within the plane threshold,
 // cell by cell, nearest to the seed first, publishing a snapshot after every cell that added
-// points, until no cell adds anything. Works at one level of detail: the level whose spacing
-// matches the density d of the parameters.
+// points, until no cell adds anything. It starts at the level whose spacing matches the density d
+// of the parameters and switches levels where the observed density drifts from d (section 3.6).
 //
 // The final result also carries the edges and corners between the segments (section 4.1).
-// Not yet here (next steps of the issue): the adaptive resolution of section 3.6 (switching
-// levels when the observed spacing drifts from d), the alpha-shape outline of each segment, and
-// edges and corners in the intermediate snapshots.
 
 #include <Eigen/Core>
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
+#include "engine/lod/lod_query.h"
 #include "engine/lod/node_cache.h"
 #include "reco/edges_and_corners.h"
+#include "reco/outline.h"
 #include "reco/parameters.h"
 #include "reco/plane_regression.h"
 
@@ -27,6 +27,23 @@ struct GrowOptions {
   std::size_t max_planes = 3;  // seed planes (section 3.4)
   bool drop_unstable = true;   // Otsu on the seed planes' support
   std::uint64_t random_seed = 1;
+  // Adaptive resolution (section 3.6). The observed density is (spacing / s_obs)^2, an areal
+  // density relative to the wanted one, where s_obs is a running mean of the distance from each
+  // added point to its nearest segment point: a queued cell is replaced by its eight children
+  // when it falls below refine_below (where the octree has finer points there), and cells move
+  // to their parents (mark and finish) when it rises above coarsen_above, never coarser than the
+  // level d asks for. The paper's thresholds: a level step divides a plane's points by four.
+  bool adaptive_resolution = true;
+  double refine_below = 0.5;
+  double coarsen_above = 4.0;
+  std::uint32_t max_refine_levels = 3;  // how much finer than the starting level a cell may go
+  // The inlier test (section 3.5) with the scanner's noise in mind: a point joins within
+  // min(t_p, noise_sigmas x the plane's RMS), never below min_threshold_fraction x t_p.
+  // noise_sigmas = 0 gives the paper's plain t_p.
+  double noise_sigmas = 4.0;
+  double min_threshold_fraction = 0.1;
+  // Fill SegmentSnapshot::members in the final result (the octree points of each segment).
+  bool collect_members = false;
   // Cancels the grow between two cells when it becomes true (a newer click, say). May be null.
   const std::atomic<bool>* cancel = nullptr;
 };
@@ -35,14 +52,32 @@ struct GrowOptions {
 struct SegmentSnapshot {
   Plane plane;               // synthesised from the regression (valid once it has 3 points)
   std::uint64_t points = 0;  // inliers added, seed points included
+  // The regression polygon (section 3.6, progress callback): the outline of the segment's points
+  // on its plane, alpha = r, with its triangulation; area = outline->shape.area_m2. Shared and
+  // immutable. To keep snapshots cheap it is redrawn when the segment has grown by a quarter
+  // since the last drawing (always in the final result), so in an intermediate snapshot it may
+  // trail the point count a little. Null for a segment without a valid plane.
+  std::shared_ptr<const PlaneOutline> outline;
+  // The segment's points as octree identities, each once; final result only, and only when
+  // GrowOptions::collect_members asks for them.
+  std::vector<lod::PointRef> members;
 };
 
 // An immutable picture of the grow at one moment; safe to hand to another thread.
 struct GrowSnapshot {
   std::vector<SegmentSnapshot> segments;
-  std::vector<Edge> edges;             // final result only: between segments, with their support range
-  std::vector<Corner> corners;         // final result only
-  std::uint32_t level = 0;             // octree level worked on
+  // Between segments, with their support ranges (section 4.1). Recomputed when the segments
+  // together have grown by a quarter (always in the final result).
+  std::vector<Edge> edges;
+  std::vector<Corner> corners;
+  std::uint32_t level = 0;         // the starting octree level, whose spacing matches d
+  std::uint32_t finest_level = 0;  // the finest and coarsest levels of the cells processed
+  std::uint32_t coarsest_level = 0;
+  std::uint64_t refinements = 0;       // cells replaced by their children (section 3.6)
+  std::uint64_t coarsenings = 0;       // groups of cells replaced by their parent
+  double data_spacing_m = 0;           // median nearest-neighbour distance of the seed points
+  double search_radius_m = 0;          // r as used: the parameters', wider where the data is sparser
+  double front_spacing_m = 0;          // s_obs: the running nearest-neighbour spacing of the growth front
   std::uint64_t cells_visited = 0;     // cell visits (a cell is visited again when a neighbour grows to it)
   std::uint64_t points_tested = 0;     // candidate point-to-plane tests
   double mean_neighbour_distance = 0;  // d_avg: mean distance from an added point to the point that reached it

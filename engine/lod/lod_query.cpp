@@ -69,15 +69,20 @@ std::vector<CellKey> existingNeighbours(const Octree& octree, const CellKey& key
   return result;
 }
 
-std::vector<std::array<double, 3>> pointsInCell(NodeCache& cache, const CellKey& key) {
-  std::vector<std::array<double, 3>> result;
-  const Cube& cube = cache.octree().cube();
+std::vector<CellPoint> pointsInCell(NodeCache& cache, const CellKey& key) {
+  std::vector<CellPoint> result;
+  const Octree& octree = cache.octree();
+  const Cube& cube = octree.cube();
   for (std::optional<CellKey> level = key; level; level = level->parent()) {
+    const NodeInfo* node = octree.find(*level);
+    if (node == nullptr) continue;
     const auto points = cache.get(*level);
-    if (!points) continue;
+    const auto node_index = static_cast<std::uint32_t>(node - octree.nodes().data());
     for (std::size_t i = 0; i < points->size(); ++i) {
       const std::array<double, 3> p = points->position(i);
-      if (level->level == key.level || cube.cellAt(p, key.level) == key) result.push_back(p);
+      if (level->level == key.level || cube.cellAt(p, key.level) == key) {
+        result.push_back({p, {node_index, static_cast<std::uint32_t>(i)}});
+      }
     }
   }
   return result;

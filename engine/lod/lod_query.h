@@ -35,10 +35,25 @@ std::vector<CellKey> existingNeighbours(const Octree& octree, const CellKey& key
 
 class NodeCache;
 
+// A point's identity in an octree: the node that stores it (its index in Octree::nodes()) and its
+// index in that node. Every point is stored once, so a point has the same identity in the cells
+// of every level that include it: what lets the region grower switch levels without counting a
+// point twice.
+struct PointRef {
+  std::uint32_t node = 0;
+  std::uint32_t index = 0;
+  bool operator==(const PointRef&) const = default;
+};
+
+struct CellPoint {
+  std::array<double, 3> position;  // world coordinates
+  PointRef ref;
+};
+
 // The points of cell `key` at its level's spacing: the points of its own node and those of its
 // ancestors that lie in the cell (Cube::cellAt decides, so each point of levels 0..key.level
-// belongs to exactly one cell of key.level). World coordinates. Loads through `cache`; blocks on
-// nodes not yet loaded.
-std::vector<std::array<double, 3>> pointsInCell(NodeCache& cache, const CellKey& key);
+// belongs to exactly one cell of key.level). Loads through `cache`; blocks on nodes not yet
+// loaded.
+std::vector<CellPoint> pointsInCell(NodeCache& cache, const CellKey& key);
 
 }  // namespace plumb::lod

@@ -3,8 +3,8 @@
 //   1. A node with at most leaf_max_points points, or at a level whose cells are smaller than
 //      kMinCellSize, is a leaf: it keeps all its points.
 //   2. Otherwise, mark the cells of the 128^3 grid over the node that hold a point of a coarser
-//      level; in every other occupied grid cell keep the point nearest the cell's lower corner
-//      (ties: the earlier point), and move those points to the front.
+//      level; in every other occupied grid cell keep the point of the smallest position hash
+//      (ties, i.e. duplicates: the earlier point), and move those points to the front.
 //   3. Partition the rest by child octant and build each non-empty child the same way, passing
 //      down the coarser points and this node's own selection that lie in the child.
 //   4. Hand the node to the sink after its children, with the mask of the children that exist.
@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "engine/lod/octree_format.h"
@@ -24,6 +25,21 @@ namespace {
 constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t kTaken = kEmpty - 1;  // holds a point of a coarser level
 constexpr std::size_t kGridCells = std::size_t{kSamplingGrid} * kSamplingGrid * kSamplingGrid;
+// A pseudo-random number in [0, 1) from the bits of a position (splitmix64 finaliser): the same
+// point scores the same whatever the order of the input or the chunking of the build.
+double positionScore(const Position& p) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ULL;
+  for (const double c : p) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &c, sizeof bits);
+    h ^= bits + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
+    h ^= h >> 31;
+  }
+  return static_cast<double>(h >> 11) * 0x1.0p-53;
+}
+
 // Below a tenth of a millimetre a node stops splitting: its points are as good as duplicates.
 constexpr double kMinCellSize = 1e-4 * kSamplingGrid;
 
@@ -40,47 +56,44 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
                                          std::span<const Position> coarser) {
   if (best_index_.empty()) {
     best_index_.assign(kGridCells, kEmpty);
-    best_distance_.assign(kGridCells, 0.0f);
+    best_score_.assign(kGridCells, 0.0f);
   }
   const Box3 box = cube_.cellBox(key);
   const double inverse_step = kSamplingGrid / cube_.cellSize(key.level);
-  // The grid cell of p and p's squared distance from the cell's lower corner, in grid steps.
-  // The lower corner, not the centre: a cell's lower corner is also the lower corner of one of
-  // its sub-cells at every finer level, so the points of all levels together approach a single
-  // regular lattice. Centres of a coarse grid sit on the corners of the finer one, and would put
-  // coarse points a third of a fine spacing from fine ones.
-  auto locate = [&](const Position& p, double& distance) {
+  // Which point of a grid cell stands for it: the one whose position hashes lowest, a choice
+  // independent of where in the cell the point lies. Any geometric rule (nearest the cell's
+  // centre, or its lower corner) prefers, on a noisy wall, the points on one side of the wall, and
+  // biases every plane fitted to a coarse level by a good fraction of the noise, more so the more
+  // points compete for a cell (docs/octree-format.md).
+  auto locate = [&](const Position& p) {
     std::size_t cell = 0;
-    distance = 0.0;
     for (std::size_t a = 0; a < 3; ++a) {
       const double local = (p[a] - box.min[a]) * inverse_step;
       const double index = std::clamp(std::floor(local), 0.0, double{kSamplingGrid - 1});
-      const double offset = local - index;
-      distance += offset * offset;
       cell = cell * kSamplingGrid + static_cast<std::size_t>(index);
     }
     return cell;
   };
 
   touched_.clear();
-  double distance = 0.0;
   for (const Position& p : coarser) {
-    const std::size_t cell = locate(p, distance);
+    const std::size_t cell = locate(p);
     if (best_index_[cell] == kEmpty) touched_.push_back(static_cast<std::uint32_t>(cell));
     best_index_[cell] = kTaken;
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const std::size_t cell = locate({points[i].x, points[i].y, points[i].z}, distance);
-    const auto d = static_cast<float>(distance);
+    const Position p{points[i].x, points[i].y, points[i].z};
+    const std::size_t cell = locate(p);
+    const auto d = static_cast<float>(positionScore(p));
     const std::uint32_t best = best_index_[cell];
     if (best == kTaken) continue;
     if (best == kEmpty) {
       touched_.push_back(static_cast<std::uint32_t>(cell));
-    } else if (!(d < best_distance_[cell])) {
+    } else if (!(d < best_score_[cell])) {
       continue;
     }
     best_index_[cell] = static_cast<std::uint32_t>(i);
-    best_distance_[cell] = d;
+    best_score_[cell] = d;
   }
   selected_.assign(points.size(), 0);
   for (std::uint32_t cell : touched_) {

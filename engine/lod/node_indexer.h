@@ -1,11 +1,11 @@
 #pragma once
 // Turns the points of one cell into that cell's subtree of octree nodes (paper section 3.1):
 // an inner node keeps a grid subsample of its points, at most one point per cell of a 128^3
-// grid over the node (the point nearest that grid cell's lower corner), and hands the rest to its
-// children; a node with at most leaf_max_points points (or too small to split) is a leaf and
-// keeps them all. Grid cells that already hold a point of a coarser level take no new one, so
-// the points of levels 0..L together have one point per grid cell of level L: a near-uniform
-// spacing of cube size / 128 / 2^L. Every input point is kept exactly once.
+// grid over the node (the point of that grid cell whose position hashes lowest: no side of a
+// noisy surface preferred), and hands the rest to its children; a node with at most leaf_max_points points (or too
+// small to split) is a leaf and keeps them all. Grid cells that already hold a point of a coarser level take no new
+// one, so the points of levels 0..L together have one point per grid cell of level L: a near-uniform spacing of cube
+// size / 128 / 2^L. Every input point is kept exactly once.
 
 #include <cstdint>
 #include <functional>
@@ -80,7 +80,7 @@ class NodeIndexer {
   std::uint32_t leaf_max_points_;
   // Scratch for selectSubsample, reused across nodes: per grid cell the best point so far.
   std::vector<std::uint32_t> best_index_;
-  std::vector<float> best_distance_;
+  std::vector<float> best_score_;
   std::vector<std::uint32_t> touched_;
   std::vector<std::uint8_t> selected_;
   std::vector<std::uint8_t> octants_;

@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <set>
 
 #include "engine/lod/lod_query.h"
 #include "engine/lod/octree_builder.h"
@@ -57,6 +59,9 @@ std::uint64_t pointsOfPatchAtLevel(lod::NodeCache& cache, std::uint32_t level, s
 }
 
 const Eigen::Vector3d kUtm(512000.0, 5403000.0, 250.0);
+// Outline areas: the raster and the alpha closing change an outline by about a cell (r / 2)
+// along its border, 1 to 2 % of these patches' areas.
+constexpr double kAreaTolerance = 0.03;
 
 //   z
 //   |  wall: x = 0, y in [0, 4], z in [0, 2.5]
@@ -88,14 +93,29 @@ TEST(RegionGrower, TwoPlanesAtRightAnglesGrowApart) {
       EXPECT_NEAR(static_cast<double>(segment.points), static_cast<double>(floor_points),
                   0.03 * static_cast<double>(floor_points));
       EXPECT_NEAR(segment.plane.signedDistance(kUtm), 0.0, 0.0005);
+      ASSERT_TRUE(segment.outline);
+      EXPECT_NEAR(segment.outline->shape.area_m2, 16.0, kAreaTolerance * 16.0);
     } else if (angleDeg(segment.plane.normal, Eigen::Vector3d::UnitX()) < 0.2) {
       ++walls;
       EXPECT_NEAR(static_cast<double>(segment.points), static_cast<double>(wall_points),
                   0.03 * static_cast<double>(wall_points));
+      ASSERT_TRUE(segment.outline);
+      EXPECT_NEAR(segment.outline->shape.area_m2, 10.0, kAreaTolerance * 10.0);
+    }
+    // The outline lies on the plane, around the segment's points: one ring, the patch's outline.
+    ASSERT_EQ(segment.outline->shape.rings.size(), 1u);
+    for (const Eigen::Vector2d& v : segment.outline->shape.rings[0]) {
+      EXPECT_LT(segment.plane.distance(segment.outline->toWorld(v)), 1e-9);
     }
   }
   EXPECT_EQ(floors, 1);
   EXPECT_EQ(walls, 1);
+  // The edge where they meet is known while they grow, not only at the end. Its support range,
+  // the 5th to the 95th percentile of the points along it, spans 90 % of the 4 m.
+  ASSERT_EQ(result.edges.size(), 1u);
+  EXPECT_NEAR((result.edges[0].end - result.edges[0].start).norm(), 3.6, 0.1);
+  EXPECT_TRUE(
+      std::any_of(snapshots.begin(), snapshots.end() - 1, [](const GrowSnapshot& s) { return !s.edges.empty(); }));
 
   // Snapshots come in order, each a valid intermediate result.
   ASSERT_GE(snapshots.size(), 2u);
@@ -172,6 +192,125 @@ TEST(RegionGrower, GrowthGoesAroundAScanShadow) {
   const std::uint64_t floor = pointsOfPatchAtLevel(cache, result.level, 0);
   EXPECT_NEAR(static_cast<double>(result.segments[0].points), static_cast<double>(floor),
               0.02 * static_cast<double>(floor));
+}
+
+//   y = 0.3 +-----------+-----------------------------------+
+//           | . . . . . |:::::::::::::::::::::::::::::::::::|  a floor strip, 4 x 0.3 m: a
+//           | . . . . . |:::::::::::::::::::::::::::::::::::|  17 mm lattice on x < 1, a hundred
+//   y = 0   +-----------+-----------------------------------+  times denser random points beyond
+//          x=0  seed   x=1                                 x=4
+// One more point at (4, 4, 4) makes the octree's cube [0, 4]^3, so that its cells of 1 m and
+// 0.5 m split the strip only along x, at the jump: cell faces fall where this sketch shows them.
+// The grow starts on the sparse part at level L (spacing s_L, wanted spacing 1.3 s_L). There the
+// observed density is a third of the wanted one, so the first dense cell is replaced by its
+// children (level L + 1); on the dense side the density is then seven times the wanted one, so
+// after finishing the cells inside the parents it has touched (mark and finish), the grow goes
+// back to level L. Across both switches no point is counted twice and none is missed.
+TEST(RegionGrower, AHundredfoldDensityJumpSwitchesLevelsAndCountsEachPointOnce) {
+  test::TempDirectory dir;
+  constexpr double kLattice = 0.017;
+  constexpr std::uint64_t kColumns = 59, kRows = 18;  // x < 1.0, y < 0.3
+  constexpr std::uint64_t kSparse = kColumns * kRows;
+  constexpr std::uint64_t kDense = 311'000;  // 3 m x 0.3 m at 100 / kLattice^2 points per m^2
+  lod::BuildOptions options;
+  options.sources = {test::generatedSource(kSparse + kDense + 1, [](std::uint64_t i) {
+    const double z = 0.0005 * (test::unitHash(i, 3) - 0.5);
+    if (i == kSparse + kDense) return test::withId(kUtm.x() + 4.0, kUtm.y() + 4.0, kUtm.z() + 4.0, 2);
+    if (i < kSparse) {
+      const double x = 0.005 + kLattice * static_cast<double>(i % kColumns);
+      const double y = 0.005 + kLattice * static_cast<double>(i / kColumns);
+      return test::withId(kUtm.x() + x, kUtm.y() + y, kUtm.z() + z, 0);
+    }
+    const double x = 1.006 + 2.994 * test::unitHash(i, 1), y = 0.3 * test::unitHash(i, 2);
+    return test::withId(kUtm.x() + x, kUtm.y() + y, kUtm.z() + z, 1);
+  })};
+  options.output = dir.file("jump.plumb");
+  options.leaf_max_points = 5000;
+  lod::buildOctree(options);
+  const auto octree = lod::Octree::open(options.output);
+  lod::NodeCache cache(octree, 256 << 20);
+
+  const Eigen::Vector3d seed = kUtm + Eigen::Vector3d(0.4, 0.15, 0.0);
+  const std::uint32_t level = octree->levelForSpacing(0.008);
+  const double spacing = 1.3 * octree->spacing(level);
+  GrowOptions grow;
+  grow.collect_members = true;
+  const GrowSnapshot result = growRegions(cache, parametersForDensity(seed, std::pow(spacing, -3.0), 0.15), grow);
+
+  ASSERT_TRUE(result.converged);
+  ASSERT_EQ(result.segments.size(), 1u);
+  EXPECT_EQ(result.level, level);
+  EXPECT_GE(result.refinements, 1u);
+  EXPECT_GE(result.coarsenings, 1u);
+  EXPECT_EQ(result.finest_level, level + 1);
+  EXPECT_EQ(result.coarsest_level, level);
+
+  // Each member once, and as many as the regression holds.
+  const SegmentSnapshot& segment = result.segments[0];
+  std::set<std::pair<std::uint32_t, std::uint32_t>> distinct;
+  for (const lod::PointRef& ref : segment.members) distinct.insert({ref.node, ref.index});
+  EXPECT_EQ(distinct.size(), segment.members.size());
+  EXPECT_EQ(segment.members.size(), segment.points);
+
+  // None missed: every lattice point, and on the dense side the points of the levels grown
+  // there (finer near the jump, the starting level further on).
+  std::uint64_t sparse = 0, dense = 0;
+  for (const lod::PointRef& ref : segment.members) {
+    const auto points = cache.get(octree->nodes()[ref.node].key);
+    (points->points[ref.index].rgb[0] == 0 ? sparse : dense) += 1;
+  }
+  EXPECT_EQ(sparse, kSparse);
+  std::uint64_t dense_at_start_level = 0;
+  for (const lod::NodeInfo& node : octree->nodes()) {
+    if (node.key.level > level) continue;
+    const auto points = cache.get(node.key);
+    for (const auto& p : points->points) dense_at_start_level += p.rgb[0] == 1 ? 1u : 0u;
+  }
+  std::printf("sparse %llu, dense %llu (%llu at level %u); %llu refinements, %llu coarsenings\n",
+              static_cast<unsigned long long>(sparse), static_cast<unsigned long long>(dense),
+              static_cast<unsigned long long>(dense_at_start_level), level,
+              static_cast<unsigned long long>(result.refinements), static_cast<unsigned long long>(result.coarsenings));
+  EXPECT_GT(dense, dense_at_start_level);      // finer near the jump ...
+  EXPECT_LT(dense, 2 * dense_at_start_level);  // ... but not all the way: the grow went back up
+}
+
+//                      +-------  tread 2, z = 0.36
+//                      | riser 1
+//            +---------+          three 30 cm treads and two 18 cm risers, 1.2 m wide,
+//            | riser 0  tread 1    1 mm noise; a click on the middle tread, seen closely
+//   ---------+          (seed)     enough that the seed holds the tread alone
+//    tread 0
+// The tread grows over itself and stops at both risers: the strips of the risers within t_p of
+// the tread's plane (the top of riser 0, the foot of riser 1) must not join, or the plane tilts
+// towards them and the growth creeps up.
+TEST(RegionGrower, AStairTreadDoesNotCreepUpItsRisers) {
+  test::TempDirectory dir;
+  const std::vector<Patch> patches{{kUtm, {0.3, 0, 0}, {0, 1.2, 0}},
+                                   {kUtm + Eigen::Vector3d(0.3, 0, 0), {0, 1.2, 0}, {0, 0, 0.18}},
+                                   {kUtm + Eigen::Vector3d(0.3, 0, 0.18), {0.3, 0, 0}, {0, 1.2, 0}},
+                                   {kUtm + Eigen::Vector3d(0.6, 0, 0.18), {0, 1.2, 0}, {0, 0, 0.18}},
+                                   {kUtm + Eigen::Vector3d(0.6, 0, 0.36), {0.3, 0, 0}, {0, 1.2, 0}}};
+  const auto octree = buildPatches(dir, patches, 200'000);
+  lod::NodeCache cache(octree, 256 << 20);
+  GrowOptions options;
+  options.collect_members = true;
+  const GrowSnapshot result = growRegions(
+      cache, parametersForDensity(kUtm + Eigen::Vector3d(0.45, 0.6, 0.18), 1.0 / std::pow(0.01, 3), 0.1), options);
+  ASSERT_TRUE(result.converged);
+  ASSERT_EQ(result.segments.size(), 1u);
+  const SegmentSnapshot& tread = result.segments[0];
+  EXPECT_LT(angleDeg(tread.plane.normal, Eigen::Vector3d::UnitZ()), 0.1);
+  EXPECT_NEAR(tread.plane.signedDistance(kUtm + Eigen::Vector3d(0, 0, 0.18)), 0.0, 0.0003);
+  std::array<std::uint64_t, 5> by_patch{};
+  for (const lod::PointRef& ref : tread.members) {
+    ++by_patch[cache.get(octree->nodes()[ref.node].key)->points[ref.index].rgb[0]];
+  }
+  const std::uint64_t tread_points = pointsOfPatchAtLevel(cache, result.level, 2);
+  EXPECT_NEAR(static_cast<double>(by_patch[2]), static_cast<double>(tread_points),
+              0.03 * static_cast<double>(tread_points));
+  // At most the few millimetres of each riser that the noise cannot tell from the tread.
+  EXPECT_LT(by_patch[1] + by_patch[3], tread_points / 25);
+  EXPECT_EQ(by_patch[0] + by_patch[4], 0u);
 }
 
 TEST(RegionGrower, ACancelledGrowStopsAtTheNextCell) {

@@ -168,8 +168,12 @@ TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
   ASSERT_EQ(plumb("simulate --points 300000 --noise-mm 2 --offset 512000,5403000,250 -o " + path("room.ply")).exit_code,
             0);
   // Near the room's corner (7, 5, 2.5) and a little inside: the x+ wall, the y+ wall, the ceiling.
-  const Outcome grow = plumb("grow " + path("room.ply") + " --seed 512006.9,5403004.9,252.4 --view-distance 3 --json " +
-                             path("grow.json"));
+  // Clicked in a view from 3 m away along the room's diagonal (docs/camera-json.md).
+  plumb::test::writeFile(path("camera.json"),
+                         R"({"format": "plumb-camera", "version": 1, "position": [512005.1679, 5403003.1679, 250.6679],
+                "target": [512006.9, 5403004.9, 252.4], "fov_deg": 60, "viewport": [1920, 1080]})");
+  const Outcome grow = plumb("grow " + path("room.ply") + " --seed 512006.9,5403004.9,252.4 --camera " +
+                             path("camera.json") + " --json " + path("grow.json") + " --gltf " + path("grow.glb"));
   ASSERT_EQ(grow.exit_code, 0) << grow.err;
   EXPECT_NE(grow.out.find("grew 3 segments"), std::string::npos) << grow.out;
   const nlohmann::json result = nlohmann::json::parse(plumb::test::readFile(path("grow.json")));
@@ -180,7 +184,14 @@ TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
     for (const auto& c : segment["plane"]["normal"]) largest = std::max(largest, std::abs(c.get<double>()));
     EXPECT_GT(largest, 0.9999) << "room planes are axis-aligned";
     EXPECT_GT(segment["statistics"]["points"].get<double>(), 100.0);
+    // The regression polygon: rings and a triangulation in world coordinates, and its area.
+    EXPECT_GT(segment["statistics"]["area_m2"].get<double>(), 0.05);
+    ASSERT_GE(segment["polygon"]["rings"].size(), 1u);
+    EXPECT_GE(segment["polygon"]["rings"][0].size(), 3u);
+    EXPECT_GE(segment["polygon"]["triangles"].size(), 1u);
   }
+  // The view 3 m away gives the parameters --view-distance 3 gives.
+  EXPECT_NEAR(result["parameters"]["seed_radius_m"].get<double>(), 0.616, 0.01);
   EXPECT_GE(result["timing"]["converged_ms"].get<double>(), result["timing"]["first_progress_ms"].get<double>());
   // The room corner where the three meet, at 2 mm noise: found within 5 mm (accuracy targets
   // are the evaluation's business; this checks the plumbing).
@@ -190,7 +201,18 @@ TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
   EXPECT_NEAR(corner[1].get<double>(), 5403005.0, 0.005);
   EXPECT_NEAR(corner[2].get<double>(), 252.5, 0.005);
   EXPECT_EQ(result["edges"].size(), 3u);
-  EXPECT_EQ(entries(), 2u) << "room.ply and grow.json only";
+  // The glTF binary: a GLB header ("glTF", version 2) and its declared length (tinygltf reads it
+  // back in the glTF writer's own test).
+  const std::string glb = plumb::test::readFile(path("grow.glb"));
+  ASSERT_GE(glb.size(), 12u);
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  EXPECT_EQ(static_cast<unsigned char>(glb[4]), 2u);
+  EXPECT_EQ(entries(), 4u) << "room.ply, camera.json, grow.json and grow.glb only";
+
+  const Outcome behind =
+      plumb("grow " + path("room.ply") + " --seed 512000.1,5403000.1,250.1 --camera " + path("camera.json"));
+  EXPECT_EQ(behind.exit_code, 1);
+  EXPECT_NE(behind.err.find("behind the camera"), std::string::npos) << behind.err;
 
   const Outcome bad = plumb("grow " + path("room.ply") + " --seed 1,2");
   EXPECT_EQ(bad.exit_code, 1);

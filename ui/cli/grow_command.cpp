@@ -11,16 +11,16 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <nlohmann/json.hpp>
 
-#include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/lod/octree_builder.h"
+#include "engine/view/camera_json.h"
 #include "reco/region_grower.h"
 #include "ui/cli/arguments.h"
 #include "ui/cli/command.h"
+#include "ui/cli/grow_output.h"
 #include "ui/cli/progress_line.h"
 
 namespace plumb::cli {
@@ -30,9 +30,11 @@ struct GrowOptions {
   std::string cloud;
   std::string seed;
   double view_distance = 3.0;
+  std::string camera;
   std::string detail;
   double plane_threshold = 0.02;
   std::string json;
+  std::string gltf;
 };
 
 bool isOctree(const std::string& path) {
@@ -50,10 +52,6 @@ struct TemporaryOctree {
   }
 };
 
-nlohmann::json vector3(const Eigen::Vector3d& v) {
-  return {v.x(), v.y(), v.z()};
-}
-
 }  // namespace
 
 Command addGrowCommand(CLI::App& plumb) {
@@ -68,16 +66,36 @@ Command addGrowCommand(CLI::App& plumb) {
                                    "Distance of the camera from the seed in metres: nearer means more detail")
                        ->check(finiteIn(0.05, 100'000))
                        ->capture_default_str();
+  auto* camera_option = sub->add_option("--camera", options->camera,
+                                        "The view the click was made in: a camera JSON file (docs/camera-json.md)")
+                            ->check(CLI::ExistingFile)
+                            ->excludes(distance);
   sub->add_option("--detail", options->detail, "Override the detail the view implies: low, medium, high or full")
       ->check(CLI::IsMember({"low", "medium", "high", "full"}))
-      ->excludes(distance);
+      ->excludes(distance)
+      ->excludes(camera_option);
   sub->add_option("--tp", options->plane_threshold, "Plane threshold t_p in metres (the precision of the planes)")
       ->check(finiteIn(1e-5, 10))
       ->capture_default_str();
   sub->add_option("--json", options->json, "Write the result as JSON (docs/grow-json.md)");
+  sub->add_option("--gltf", options->gltf,
+                  "Write the segments' polygons, edges and corners as a glTF 2.0 binary (.glb)");
 
   auto run = [options]() -> int {
     const Eigen::Vector3d seed = parseVector3(options->seed, "--seed");
+    // Read the camera before any work: a bad file is reported at once.
+    reco::ViewAtClick view = reco::viewFromDistance(seed, options->view_distance);
+    if (!options->camera.empty()) {
+      const view::Camera camera = view::readCameraJson(options->camera);
+      view.view = view::viewMatrix(camera);
+      view.projection = view::projectionMatrix(camera);
+      view.viewport_width_px = camera.viewport_width_px;
+      view.viewport_height_px = camera.viewport_height_px;
+      view.picked = seed;
+      if ((view.view * Eigen::Vector4d(seed.x(), seed.y(), seed.z(), 1.0)).z() >= 0.0) {
+        throw Error(options->camera + ": the seed " + options->seed + " is behind the camera");
+      }
+    }
     TemporaryOctree temporary;
     std::string octree_path = options->cloud;
     if (!isOctree(octree_path)) {
@@ -100,8 +118,7 @@ Command addGrowCommand(CLI::App& plumb) {
 
     reco::ParameterConstants constants;
     constants.plane_threshold_m = options->plane_threshold;
-    reco::GrowParameters parameters =
-        reco::parametersForView(reco::viewFromDistance(seed, options->view_distance), constants);
+    reco::GrowParameters parameters = reco::parametersForView(view, constants);
     if (!options->detail.empty()) {
       const double density = options->detail == "low"      ? constants.min_density
                              : options->detail == "medium" ? std::sqrt(constants.min_density * constants.max_density)
@@ -120,6 +137,9 @@ Command addGrowCommand(CLI::App& plumb) {
                 octree->spacing(result.level));
     std::printf("  parameters  r_s %.3f m, d %.0f points/m^3, r %.4f m, t_p %.4f m\n", parameters.seed_radius_m,
                 parameters.density, parameters.search_radius_m, parameters.plane_threshold_m);
+    std::printf("  grown at    levels %u to %u (%s refinements, %s coarsenings), r %.4f m (data spacing %.4f m)\n",
+                result.coarsest_level, result.finest_level, withThousands(result.refinements).c_str(),
+                withThousands(result.coarsenings).c_str(), result.search_radius_m, result.data_spacing_m);
     for (std::size_t s = 0; s < result.segments.size(); ++s) {
       const reco::SegmentSnapshot& segment = result.segments[s];
       const reco::Plane& plane = segment.plane;
@@ -141,54 +161,9 @@ Command addGrowCommand(CLI::App& plumb) {
                 withThousands(result.cells_visited).c_str(), withThousands(result.points_tested).c_str());
 
     if (!options->json.empty()) {
-      nlohmann::json segments = nlohmann::json::array();
-      for (const reco::SegmentSnapshot& segment : result.segments) {
-        const reco::Plane& plane = segment.plane;
-        segments.push_back(
-            {{"plane",
-              {{"normal", vector3(plane.normal)},
-               {"d", plane.offset},
-               {"origin", vector3(plane.centroid)},
-               {"tangent", vector3(plane.tangent)},
-               {"bitangent", vector3(plane.bitangent)}}},
-             {"statistics", {{"points", segment.points}, {"lambda2", plane.lambda2}, {"rms_m", plane.rms}}}});
-      }
-      nlohmann::json edges = nlohmann::json::array();
-      for (const reco::Edge& edge : result.edges) {
-        edges.push_back({{"start", vector3(edge.start)},
-                         {"end", vector3(edge.end)},
-                         {"segments", edge.segments},
-                         {"support_points", edge.support_points}});
-      }
-      nlohmann::json corners = nlohmann::json::array();
-      for (const reco::Corner& corner : result.corners) {
-        corners.push_back(
-            {{"position", vector3(corner.position)}, {"segments", corner.segments}, {"support", corner.support}});
-      }
-      const nlohmann::json root{{"format", "plumb-grow"},
-                                {"version", 1},
-                                {"cloud", options->cloud},
-                                {"seed", vector3(seed)},
-                                {"parameters",
-                                 {{"seed_radius_m", parameters.seed_radius_m},
-                                  {"density", parameters.density},
-                                  {"spacing_m", parameters.spacing_m},
-                                  {"search_radius_m", parameters.search_radius_m},
-                                  {"plane_threshold_m", parameters.plane_threshold_m},
-                                  {"level", result.level}}},
-                                {"segments", segments},
-                                {"edges", edges},
-                                {"corners", corners},
-                                {"timing",
-                                 {{"first_progress_ms", first_progress_ms},
-                                  {"converged_ms", result.elapsed_ms},
-                                  {"cells_visited", result.cells_visited},
-                                  {"points_tested", result.points_tested}}}};
-      const std::string text = root.dump(1) + "\n";
-      AtomicFile file(options->json);
-      file.write(text.data(), text.size());
-      file.commit();
+      writeGrowJson({options->cloud, seed, parameters, result, first_progress_ms}, options->json);
     }
+    if (!options->gltf.empty()) writeGrowGltf(result, options->gltf);
     return 0;
   };
   return {sub, run};

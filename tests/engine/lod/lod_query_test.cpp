@@ -100,7 +100,13 @@ TEST(LodQuery, PointsInCellShareOutTheCoarserLevels) {
       }
       if (node.key.level != level) continue;
       const auto in_cell = pointsInCell(cache, node.key);
-      for (const auto& p : in_cell) ASSERT_EQ(octree->cube().cellAt(p, level), node.key);
+      for (const auto& p : in_cell) {
+        ASSERT_EQ(octree->cube().cellAt(p.position, level), node.key);
+        // The identity names the node that stores the point, at this level or above.
+        const NodeInfo& owner = octree->nodes()[p.ref.node];
+        ASSERT_LE(owner.key.level, level);
+        ASSERT_EQ(cache.get(owner.key)->position(p.ref.index), p.position);
+      }
       found += in_cell.size();
     }
     EXPECT_EQ(found, expected) << "level " << level;
@@ -109,18 +115,19 @@ TEST(LodQuery, PointsInCellShareOutTheCoarserLevels) {
 }
 
 // The locality promise: a query's cost follows the region, not the cloud. Two floors of equal
-// density (100 points per square metre), 1 million points on 100 x 100 m and 100 million on
-// 1000 x 1000 m: the same 1 m query at the same spacing looks at as many nodes in both. The
-// larger tree has log2(10) = 3.3 more levels on top, which may add a node or two per extra level
-// on the path down, nothing that grows with the cloud. (The large build takes a few minutes
-// under the sanitizers and about 5 GB of temporary disk.)
+// density (100 points per square metre), 1 million points on 100 x 100 m and 25 million on
+// 500 x 500 m: the same 1 m query at the same spacing looks at as many nodes in both. The
+// larger tree has log2(5) = 2.3 more levels on top, which may add a node or two per extra level
+// on the path down, nothing that grows with the cloud. (Under the sanitizers a 100 million point
+// build took 7 to 10 minutes on two cores, too long for the suite: plumb_bench_lod shows the
+// same at 100 million points on a Release build, docs/benchmarks.md.)
 TEST(LodQuery, LocalQueryCostDoesNotGrowWithTheCloud) {
   test::TempDirectory dir;
   const auto small = buildFloor(dir, "small.plumb", 100.0, 20'000);
-  const auto large = buildFloor(dir, "large.plumb", 1000.0, 20'000);
+  const auto large = buildFloor(dir, "large.plumb", 500.0, 20'000);
   ASSERT_EQ(small->header().point_count, 1'000'000u);
-  ASSERT_EQ(large->header().point_count, 100'000'000u);
-  ASSERT_GT(large->nodes().size(), 50 * small->nodes().size());
+  ASSERT_EQ(large->header().point_count, 25'000'000u);
+  ASSERT_GT(large->nodes().size(), 15 * small->nodes().size());
 
   const double spacing = 0.1;
   const std::array<double, 3> centre{512050.0, 5403050.0, 250.0};
@@ -129,10 +136,10 @@ TEST(LodQuery, LocalQueryCostDoesNotGrowWithTheCloud) {
   const auto large_nodes = nodesInSphere(*large, centre, 1.0, large->levelForSpacing(spacing), &large_stats);
   std::printf(
       "1 m query at %.3f m spacing: %zu nodes (%llu visited) of %zu in the 1 M cloud, %zu (%llu) of %zu in "
-      "the 100 M cloud\n",
+      "the 25 M cloud\n",
       spacing, small_nodes.size(), static_cast<unsigned long long>(small_stats.nodes_visited), small->nodes().size(),
       large_nodes.size(), static_cast<unsigned long long>(large_stats.nodes_visited), large->nodes().size());
-  constexpr std::uint64_t kExtraLevels = 4;
+  constexpr std::uint64_t kExtraLevels = 3;
   EXPECT_LE(large_nodes.size(), small_nodes.size() + 2 * kExtraLevels);
   EXPECT_LE(large_stats.nodes_visited, small_stats.nodes_visited + 8 * kExtraLevels);
 }

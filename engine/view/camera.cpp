@@ -1,0 +1,107 @@
+#include "engine/view/camera.h"
+
+#include <Eigen/Geometry>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+
+#include "engine/core/error.h"
+
+namespace plumb::view {
+namespace {
+
+bool finite(const Eigen::Vector3d& v) {
+  return v.allFinite();
+}
+
+}  // namespace
+
+std::optional<CameraProblem> findCameraProblem(const Camera& camera) {
+  if (!finite(camera.position)) return CameraProblem{"position", "must be finite numbers"};
+  if (!finite(camera.target)) return CameraProblem{"target", "must be finite numbers"};
+  if (!finite(camera.up)) return CameraProblem{"up", "must be finite numbers"};
+  const Eigen::Vector3d direction = camera.target - camera.position;
+  // Subtracting two UTM coordinates can overflow only for absurd inputs, but check anyway.
+  if (!finite(direction) || direction.norm() < kMinTargetDistance) {
+    return CameraProblem{"target", "must lie at least 1 micrometre from the position (the camera needs a direction)"};
+  }
+  const double up_length = camera.up.norm();
+  if (!(up_length > 0.0)) return CameraProblem{"up", "must not be the zero vector"};
+  const double sine = direction.normalized().cross(camera.up / up_length).norm();
+  if (sine < std::sin(kMinUpAngle)) {
+    return CameraProblem{"up", "must not be parallel to the view direction (target - position)"};
+  }
+  if (!std::isfinite(camera.fov_deg) || camera.fov_deg <= 0.0 || camera.fov_deg >= 180.0) {
+    return CameraProblem{"fov_deg", "must lie strictly between 0 and 180 degrees"};
+  }
+  if (!std::isfinite(camera.ortho_height_m) || camera.ortho_height_m <= 0.0) {
+    return CameraProblem{"ortho_height_m", "must be a positive number of metres"};
+  }
+  if (camera.viewport_width_px <= 0 || camera.viewport_height_px <= 0) {
+    return CameraProblem{"viewport", "width and height must be positive pixel counts"};
+  }
+  if (!std::isfinite(camera.near_m) || camera.near_m <= 0.0) {
+    return CameraProblem{"near_m", "must be a positive number of metres"};
+  }
+  if (!std::isfinite(camera.far_m) || camera.far_m <= camera.near_m) {
+    return CameraProblem{"far_m", "must be a finite number of metres greater than near_m"};
+  }
+  return std::nullopt;
+}
+
+void validateCamera(const Camera& camera) {
+  if (const auto problem = findCameraProblem(camera)) {
+    throw Error("camera: field '" + problem->field + "': " + problem->what);
+  }
+}
+
+Eigen::Vector3d viewDirection(const Camera& camera) {
+  return (camera.target - camera.position).normalized();
+}
+
+double aspectRatio(const Camera& camera) {
+  return static_cast<double>(camera.viewport_width_px) / static_cast<double>(camera.viewport_height_px);
+}
+
+Eigen::Matrix4d viewMatrix(const Camera& camera) {
+  assert(!findCameraProblem(camera) && "validate the camera (validateCamera) before building its matrices");
+  // The rows of the rotation are the camera axes in world coordinates: right, up, backwards
+  // (the camera looks down -z), as gluLookAt builds them.
+  const Eigen::Vector3d forward = viewDirection(camera);
+  const Eigen::Vector3d right = forward.cross(camera.up).normalized();
+  const Eigen::Vector3d up = right.cross(forward);
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
+  view.block<1, 3>(0, 0) = right.transpose();
+  view.block<1, 3>(1, 0) = up.transpose();
+  view.block<1, 3>(2, 0) = -forward.transpose();
+  view.block<3, 1>(0, 3) = -(view.block<3, 3>(0, 0) * camera.position);
+  return view;
+}
+
+Eigen::Matrix4d projectionMatrix(const Camera& camera) {
+  assert(!findCameraProblem(camera) && "validate the camera (validateCamera) before building its matrices");
+  const double aspect = aspectRatio(camera);
+  const double near = camera.near_m;
+  const double far = camera.far_m;
+  Eigen::Matrix4d projection = Eigen::Matrix4d::Zero();
+  if (camera.projection == Projection::kPerspective) {
+    // gluPerspective.
+    const double f = 1.0 / std::tan(camera.fov_deg * std::numbers::pi / 360.0);
+    projection(0, 0) = f / aspect;
+    projection(1, 1) = f;
+    projection(2, 2) = (far + near) / (near - far);
+    projection(2, 3) = 2.0 * far * near / (near - far);
+    projection(3, 2) = -1.0;
+  } else {
+    // glOrtho with a symmetric box of ortho_height_m by ortho_height_m * aspect.
+    const double height = camera.ortho_height_m;
+    projection(0, 0) = 2.0 / (height * aspect);
+    projection(1, 1) = 2.0 / height;
+    projection(2, 2) = -2.0 / (far - near);
+    projection(2, 3) = -(far + near) / (far - near);
+    projection(3, 3) = 1.0;
+  }
+  return projection;
+}
+
+}  // namespace plumb::view

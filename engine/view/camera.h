@@ -1,0 +1,68 @@
+#pragma once
+// A camera in world coordinates (double precision) and the OpenGL-style matrices it implies.
+//
+// Conventions, the same as reco::ViewAtClick (reco/parameters.h), which the matrices feed:
+// - viewMatrix maps world to camera space; the camera sits at the origin of camera space and looks
+//   down its -z axis, +y is the screen's up, +x its right (right-handed).
+// - projectionMatrix maps camera to clip space as glFrustum / glOrtho do: after the divide by w, x
+//   and y run from -1 to 1 over the viewport (y up) and depth from -1 at the near plane to +1 at
+//   the far plane. A Vulkan renderer (depth 0..1, y down) converts with its own correction matrix.
+//
+// Plain data: copy freely, no thread-safety concerns.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace plumb::view {
+
+enum class Projection : std::uint8_t { kPerspective, kOrthographic };
+
+struct Camera {
+  Eigen::Vector3d position{0.0, -10.0, 0.0};  // the eye, world coordinates
+  Eigen::Vector3d target{0.0, 0.0, 0.0};      // the look-at point, world coordinates
+  Eigen::Vector3d up{0.0, 0.0, 1.0};          // any length, not parallel to target - position
+  Projection projection = Projection::kPerspective;
+  double fov_deg = 60.0;          // vertical field of view (perspective), exclusive range (0, 180)
+  double ortho_height_m = 10.0;   // the world height the viewport shows (orthographic)
+  int viewport_width_px = 1920;   // > 0
+  int viewport_height_px = 1080;  // > 0
+  double near_m = 0.05;           // clip distances along the view direction, 0 < near < far
+  double far_m = 10'000.0;
+};
+
+// What is wrong with a camera: the field (named as in the JSON file, docs/camera-json.md) and why.
+struct CameraProblem {
+  std::string field;
+  std::string what;
+};
+
+// The first rule `camera` breaks, or nothing when it is valid. The rules: every number finite;
+// position and target at least kMinTargetDistance apart; up not zero and at least kMinUpAngle
+// radians away from the view direction; fov_deg in (0, 180); ortho_height_m, viewport sizes > 0;
+// 0 < near_m < far_m. Every field is checked whatever the projection.
+std::optional<CameraProblem> findCameraProblem(const Camera& camera);
+
+// Throws plumb::Error "camera: field '<field>': <what>" when findCameraProblem finds a problem.
+void validateCamera(const Camera& camera);
+
+constexpr double kMinTargetDistance = 1e-6;  // metres
+constexpr double kMinUpAngle = 1e-6;         // radians between up and the view direction
+
+// The unit view direction, (target - position) normalised. The camera must be valid.
+Eigen::Vector3d viewDirection(const Camera& camera);
+
+// World -> camera (rigid: rotation and translation). The camera must be valid (assert).
+// The translation carries the full world coordinates: apply it in double precision.
+Eigen::Matrix4d viewMatrix(const Camera& camera);
+
+// Camera -> clip, OpenGL style (see the top of this file). Perspective: the projection(3, 3) entry is 0
+// and the w row is (0, 0, -1, 0); orthographic: the last row is (0, 0, 0, 1), the viewport showing
+// ortho_height_m by ortho_height_m * aspect. The camera must be valid (assert).
+Eigen::Matrix4d projectionMatrix(const Camera& camera);
+
+// viewport_width_px / viewport_height_px.
+double aspectRatio(const Camera& camera);
+
+}  // namespace plumb::view
