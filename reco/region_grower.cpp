@@ -19,8 +19,10 @@
 //   5. After a cell that added points, refit the grown planes and publish a snapshot: planes,
 //      outlines (outline.h) and the edges and corners between the segments (edges_and_corners.h),
 //      the last two redrawn as the segments grow by a quarter.
-//   6. Stop when the queue is empty (converged) or the cancel flag is set (checked per cell);
-//      the final result has everything drawn anew.
+//   6. Stop when the queue is empty (converged) or the cancel flag is set (checked per cell).
+//   7. Settle (converged grows): points near where segments meet move to the nearest plane
+//      among the segments around them, and the planes are refitted; the final result has
+//      everything drawn anew.
 
 #include "reco/region_grower.h"
 
@@ -315,8 +317,10 @@ class Grower {
   void assign(CellState& state, std::uint32_t index, std::uint32_t segment) {
     membership_.assign(state.refs[index], segment);
     const Eigen::Vector3d& p = state.points[index];
-    regressions_[segment].add(p);
+    if (takesFit(segment, p, level_of_assignment_)) regressions_[segment].add(p);
     segment_points_[segment].push_back(p);
+    segment_refs_[segment].push_back(state.refs[index]);
+    segment_fit_levels_[segment].push_back(level_of_assignment_);
     assigned_[grid_.keyOf(p)].push_back({p, segment});
     grown_[segment] = true;
     // The plane follows the regression as it grows (the paper tests each point against the
@@ -368,6 +372,22 @@ class Grower {
     snapshot_.search_radius_m = radius_;
   }
 
+  // Whether p enters the segment's regression: at most one point per square of the level's
+  // spacing on the segment's plane. The octree keeps one point per cube of that spacing, so a
+  // noisy wall whose band of points straddles a face of those cubes gets a second point in
+  // every column there, all from the tail of the noise on the far side of the face: fitted
+  // as they come, they pull the plane by a sizeable fraction of the noise towards the cube
+  // faces. An areally uniform sample has no such bias. Every point still joins the segment.
+  bool takesFit(std::uint32_t segment, const Eigen::Vector3d& p, std::uint32_t level) {
+    if (!options_.areal_fit_sample) return true;
+    const FitFrame& frame = fit_frames_[segment];
+    const double inverse = 1.0 / octree_.spacing(level);
+    const Eigen::Vector3d d = p - frame.origin;
+    const auto u = static_cast<std::int64_t>(std::floor(d.dot(frame.u) * inverse));
+    const auto v = static_cast<std::int64_t>(std::floor(d.dot(frame.v) * inverse));
+    return fit_squares_[segment].insert(GridKey{u, v, static_cast<std::int64_t>(level)}).second;
+  }
+
   void seed() {
     const double rs = parameters_.seed_radius_m;
     const auto seed_array = array(parameters_.seed);
@@ -416,8 +436,14 @@ class Grower {
     fitted_count_.assign(planes.size(), 0);
     thresholds_.assign(planes.size(), parameters_.plane_threshold_m);
     segment_points_.resize(planes.size());
+    segment_refs_.resize(planes.size());
+    segment_fit_levels_.resize(planes.size());
     grown_.assign(planes.size(), false);
+    fit_frames_.resize(planes.size());
+    fit_squares_.resize(planes.size());
+    level_of_assignment_ = base_level_;
     for (std::uint32_t s = 0; s < planes.size(); ++s) {
+      fit_frames_[s] = {planes[s].plane.centroid, planes[s].plane.tangent, planes[s].plane.bitangent};
       planes_[s] = planes[s].plane;  // the RANSAC refit, until the regression takes over
       updateThreshold(s);
       for (std::uint32_t i : planes[s].inliers) {
@@ -477,6 +503,7 @@ class Grower {
     working_level_ = key.level;  // new neighbours start at this cell's level
     CellState& state = loaded(key);
     state.processed = true;
+    level_of_assignment_ = key.level;
     std::vector<Assigned> queue = std::move(state.frontier);
     state.frontier.clear();
     bool added = false;
@@ -542,7 +569,8 @@ class Grower {
     for (std::size_t s = 0; s < regressions_.size(); ++s) {
       SegmentSnapshot& segment = snapshot_.segments[s];
       segment.plane = planes_[s];
-      segment.points = regressions_[s].count();
+      segment.points = segment_points_[s].size();
+      segment.fit_points = regressions_[s].count();
       total += segment.points;
       if (!planes_[s].valid) {
         segment.outline.reset();
@@ -575,7 +603,70 @@ class Grower {
     if (progress_) progress_(snapshot_);
   }
 
+  // Settles the points where segments meet: a point went to the first segment that reached it,
+  // but near an edge it may lie nearer the plane of the other one. Where one segment got there
+  // first along a whole edge, it holds a strip of its neighbour's points there, all on one side
+  // of its plane: a bias that grows with the noise. Each point moves to the nearest plane among
+  // those of the segments with a point within r of it and within their thresholds; then the
+  // regressions are rebuilt from their points.
+  void settle() {
+    const std::size_t n = regressions_.size();
+    if (n < 2) return;
+    std::vector<std::vector<Eigen::Vector3d>> points(n);
+    std::vector<std::vector<lod::PointRef>> refs(n);
+    std::vector<std::vector<std::uint32_t>> levels(n);
+    bool moved = false;
+    for (std::uint32_t s = 0; s < n; ++s) {
+      for (std::size_t i = 0; i < segment_points_[s].size(); ++i) {
+        const Eigen::Vector3d& p = segment_points_[s][i];
+        std::uint32_t best = s;
+        double best_distance = planes_[s].valid ? planes_[s].distance(p) : INFINITY;
+        std::uint32_t near_mask = 0;
+        grid_.forEachAround(p, [&](const GridKey& key) {
+          const auto it = assigned_.find(key);
+          if (it == assigned_.end()) return;
+          for (const Assigned& a : it->second) {
+            if (a.segment == s || ((near_mask >> a.segment) & 1u)) continue;
+            if ((a.position - p).squaredNorm() <= radius_ * radius_) near_mask |= 1u << a.segment;
+          }
+        });
+        for (std::uint32_t t = 0; t < n; ++t) {
+          if (!((near_mask >> t) & 1u) || !planes_[t].valid) continue;
+          const double d = planes_[t].distance(p);
+          if (d < best_distance && d < thresholds_[t]) {
+            best_distance = d;
+            best = t;
+          }
+        }
+        moved = moved || best != s;
+        points[best].push_back(p);
+        refs[best].push_back(segment_refs_[s][i]);
+        levels[best].push_back(segment_fit_levels_[s][i]);
+      }
+    }
+    if (!moved) return;
+    for (std::uint32_t s = 0; s < n; ++s) {
+      PlaneRegression regression;
+      fit_squares_[s].clear();
+      for (std::size_t i = 0; i < points[s].size(); ++i) {
+        if (takesFit(s, points[s][i], levels[s][i])) regression.add(points[s][i]);
+      }
+      for (const lod::PointRef& ref : refs[s]) membership_.assign(ref, s);
+      regressions_[s] = regression;
+      refit(s);
+    }
+    segment_points_ = std::move(points);
+    segment_refs_ = std::move(refs);
+    segment_fit_levels_ = std::move(levels);
+    // The neighbour index follows the points' new segments, for any later use.
+    assigned_.clear();
+    for (std::uint32_t s = 0; s < n; ++s) {
+      for (const Eigen::Vector3d& p : segment_points_[s]) assigned_[grid_.keyOf(p)].push_back({p, s});
+    }
+  }
+
   GrowSnapshot finish(bool converged) {
+    if (converged && options_.settle) settle();
     snapshot_.converged = converged;
     fillSnapshot(true);
     if (options_.collect_members) {
@@ -592,7 +683,7 @@ class Grower {
   GrowParameters parameters_;
   GrowOptions options_;
   const GrowProgress& progress_;
-  double radius_;          // r: the parameters', or wider where the data is sparser (adaptToDataSpacing)
+  double radius_;  // r: the parameters', or wider where the data is sparser (adaptToDataSpacing)
   PointGrid grid_;
   CellClaims claims_;
   Membership membership_;
@@ -602,10 +693,18 @@ class Grower {
 
   GrowSnapshot snapshot_;
   std::vector<PlaneRegression> regressions_;
-  std::vector<Plane> planes_;                                 // the regressions' planes, refitted as they grow
-  std::vector<std::uint64_t> fitted_count_;                   // regression size at the last refit
-  std::vector<double> thresholds_;                            // per segment: what a point may be off its plane
-  std::vector<std::vector<Eigen::Vector3d>> segment_points_;  // for the edges and corners
+  std::vector<Plane> planes_;                                   // the regressions' planes, refitted as they grow
+  std::vector<std::uint64_t> fitted_count_;                     // regression size at the last refit
+  std::vector<double> thresholds_;                              // per segment: what a point may be off its plane
+  std::vector<std::vector<Eigen::Vector3d>> segment_points_;    // for outlines, edges and corners
+  std::vector<std::vector<lod::PointRef>> segment_refs_;        // the same points' identities
+  std::vector<std::vector<std::uint32_t>> segment_fit_levels_;  // and the level each was gathered at
+  struct FitFrame {
+    Eigen::Vector3d origin, u, v;  // the seed plane's centroid, tangent and bitangent
+  };
+  std::vector<FitFrame> fit_frames_;
+  std::vector<std::unordered_set<GridKey, GridKeyHash>> fit_squares_;  // squares with a fitted point
+  std::uint32_t level_of_assignment_ = 0;                              // the level of the cell being grown
   std::vector<bool> grown_;
   std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
   std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found

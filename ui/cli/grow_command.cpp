@@ -143,9 +143,9 @@ Command addGrowCommand(CLI::App& plumb) {
     for (std::size_t s = 0; s < result.segments.size(); ++s) {
       const reco::SegmentSnapshot& segment = result.segments[s];
       const reco::Plane& plane = segment.plane;
-      std::printf("  segment %zu  %s points, normal %+.4f %+.4f %+.4f, rms %.2f mm, lambda2 %.3g m^2\n", s,
-                  withThousands(segment.points).c_str(), plane.normal.x(), plane.normal.y(), plane.normal.z(),
-                  plane.rms * 1e3, plane.lambda2);
+      std::printf("  segment %zu  %s points, normal %+.4f %+.4f %+.4f, rms %.2f mm, lambda2 %.3g m^2, area %.2f m^2\n",
+                  s, withThousands(segment.points).c_str(), plane.normal.x(), plane.normal.y(), plane.normal.z(),
+                  plane.rms * 1e3, plane.lambda2, segment.outline ? segment.outline->shape.area_m2 : 0.0);
     }
     for (const reco::Edge& edge : result.edges) {
       std::printf("  edge        segments %u-%u, %.3f m from %.3f %.3f %.3f to %.3f %.3f %.3f\n", edge.segments[0],
