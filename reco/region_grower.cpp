@@ -153,7 +153,13 @@ class Grower {
     CellState& state = cells_[key];
     if (!state.loaded) {
       state.loaded = true;
-      for (const lod::CellPoint& p : lod::pointsInCell(cache_, key)) {
+      // Coarser levels first: where two points share a square of the fit sample (takesFit), the
+      // one of the coarser level, an unbiased pick from a larger cube, is the one met first.
+      std::vector<lod::CellPoint> points = lod::pointsInCell(cache_, key);
+      std::stable_sort(points.begin(), points.end(), [&](const lod::CellPoint& a, const lod::CellPoint& b) {
+        return octree_.nodes()[a.ref.node].key.level < octree_.nodes()[b.ref.node].key.level;
+      });
+      for (const lod::CellPoint& p : points) {
         const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
         state.by_grid[grid_.keyOf(position)].push_back(static_cast<std::uint32_t>(state.points.size()));
         state.points.push_back(position);
