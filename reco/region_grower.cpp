@@ -95,6 +95,10 @@ struct CellState {
   bool processed = false;
   std::vector<Eigen::Vector3d> points;
   std::vector<lod::PointRef> refs;
+  // Whether each point has joined a segment: Membership's answer, kept here because the growth
+  // asks it for every candidate. Claims are disjoint, so while this cell exists its points join
+  // only through it.
+  std::vector<std::uint8_t> assigned;
   std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> by_grid;
   std::vector<Assigned> frontier;  // assigned points within r of this cell, not yet expanded here
 };
@@ -153,17 +157,13 @@ class Grower {
     CellState& state = cells_[key];
     if (!state.loaded) {
       state.loaded = true;
-      // Coarser levels first: where two points share a square of the fit sample (takesFit), the
-      // one of the coarser level, an unbiased pick from a larger cube, is the one met first.
-      std::vector<lod::CellPoint> points = lod::pointsInCell(cache_, key);
-      std::stable_sort(points.begin(), points.end(), [&](const lod::CellPoint& a, const lod::CellPoint& b) {
-        return octree_.nodes()[a.ref.node].key.level < octree_.nodes()[b.ref.node].key.level;
-      });
+      const std::vector<lod::CellPoint> points = lod::pointsInCell(cache_, key);
       for (const lod::CellPoint& p : points) {
         const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
         state.by_grid[grid_.keyOf(position)].push_back(static_cast<std::uint32_t>(state.points.size()));
         state.points.push_back(position);
         state.refs.push_back(p.ref);
+        state.assigned.push_back(membership_.assigned(p.ref) ? 1 : 0);
       }
     }
     return state;
@@ -322,6 +322,7 @@ class Grower {
   // Records point i of a cell as joining `segment`.
   void assign(CellState& state, std::uint32_t index, std::uint32_t segment) {
     membership_.assign(state.refs[index], segment);
+    state.assigned[index] = 1;
     const Eigen::Vector3d& p = state.points[index];
     if (takesFit(segment, p, level_of_assignment_)) regressions_[segment].add(p);
     segment_points_[segment].push_back(p);
@@ -368,14 +369,17 @@ class Grower {
   // a search radius of twice d's spacing finds no neighbours. The seed points tell the spacing the
   // data has, and r follows the larger of the two. The density the grow aims for stays d: where
   // the octree has finer points further on, the adaptive resolution goes and gets them.
-  void adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points) {
+  // Returns whether r changed.
+  bool adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points) {
     const double data_spacing = medianNearestDistance(seed_points, 0.5 * parameters_.seed_radius_m);
     snapshot_.data_spacing_m = data_spacing;
-    if (2.0 * data_spacing > radius_) {
+    const bool widen = 2.0 * data_spacing > radius_;
+    if (widen) {
       radius_ = std::min(2.0 * data_spacing, 0.5 * parameters_.seed_radius_m);
       grid_ = PointGrid(parameters_.seed, radius_);
     }
     snapshot_.search_radius_m = radius_;
+    return widen;
   }
 
   // Whether p enters the segment's regression: at most one point per square of the level's
@@ -412,18 +416,26 @@ class Grower {
           const CellKey key{base_level_, x, y, z};
           if (octree_.cube().squaredDistance(key, seed_array) > rs * rs) continue;
           seed_cells.push_back(key);
-          for (const lod::CellPoint& p : lod::pointsInCell(cache_, key)) {
-            const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
+          // Loaded before r is known: the neighbour grid of the cell is built anew below.
+          const CellState& state = loaded(key);
+          for (const Eigen::Vector3d& position : state.points) {
             if ((position - parameters_.seed).squaredNorm() <= rs * rs) points.push_back(position);
           }
         }
       }
     }
-    adaptToDataSpacing(points);
+    if (adaptToDataSpacing(points)) {
+      for (const CellKey& key : seed_cells) {
+        CellState& state = cells_[key];
+        state.by_grid.clear();
+        for (std::uint32_t i = 0; i < state.points.size(); ++i)
+          state.by_grid[grid_.keyOf(state.points[i])].push_back(i);
+      }
+    }
     points.clear();
     for (const CellKey& key : seed_cells) {
       claims_.claim(key);
-      CellState& state = loaded(key);
+      CellState& state = cells_[key];
       for (std::uint32_t i = 0; i < state.points.size(); ++i) {
         if ((state.points[i] - parameters_.seed).squaredNorm() <= rs * rs) {
           points.push_back(state.points[i]);
@@ -454,7 +466,7 @@ class Grower {
       updateThreshold(s);
       for (std::uint32_t i : planes[s].inliers) {
         CellState& state = cells_[origin[i].first];
-        if (!membership_.assigned(state.refs[origin[i].second])) assign(state, origin[i].second, s);
+        if (!state.assigned[origin[i].second]) assign(state, origin[i].second, s);
       }
       refit(s);
     }
@@ -464,7 +476,10 @@ class Grower {
 
   // The segment an unassigned point p joins: the nearest plane within its threshold among the segments
   // with an assigned point within r of p; and how far the nearest assigned point is.
-  Candidate bestSegment(const Eigen::Vector3d& p) {
+  // `measure`: also find the nearest assigned point (what the adaptive resolution observes), at
+  // the cost of a distance to every assigned point around; otherwise each segment's first
+  // point within r ends its search.
+  Candidate bestSegment(const Eigen::Vector3d& p, bool measure) {
     Candidate best;
     double best_distance = INFINITY;
     double nearest2 = INFINITY;
@@ -473,6 +488,7 @@ class Grower {
       const auto it = assigned_.find(key);
       if (it == assigned_.end()) return;
       for (const Assigned& a : it->second) {
+        if (!measure && ((seen_mask >> a.segment) & 1u)) continue;
         const double d2 = (a.position - p).squaredNorm();
         if (d2 > radius_ * radius_) continue;
         nearest2 = std::min(nearest2, d2);
@@ -493,8 +509,8 @@ class Grower {
   }
 
   void observeSpacing(double nearest_m) {
-    // A running mean over the last hundred-odd points: the density where the front is now.
-    constexpr double kWeight = 1.0 / 128.0;
+    // A running mean over the last few dozen measured points: the density where the front is now.
+    constexpr double kWeight = 1.0 / 32.0;
     front_spacing_ = front_samples_ == 0 ? nearest_m : front_spacing_ + kWeight * (nearest_m - front_spacing_);
     ++front_samples_;
   }
@@ -519,16 +535,18 @@ class Grower {
         const auto it = state.by_grid.find(grid_key);
         if (it == state.by_grid.end()) return;
         for (std::uint32_t i : it->second) {
-          if (membership_.assigned(state.refs[i])) continue;
+          if (state.assigned[i]) continue;
           const double distance = (state.points[i] - from.position).norm();
           if (distance > radius_) continue;
-          const Candidate candidate = bestSegment(state.points[i]);
+          // One added point in four is measured: enough for a running mean of the spacing.
+          const bool measure = (neighbour_distance_count_ & 3u) == 0;
+          const Candidate candidate = bestSegment(state.points[i], measure);
           if (candidate.segment < 0) continue;
           assign(state, i, static_cast<std::uint32_t>(candidate.segment));
           queue.push_back({state.points[i], static_cast<std::uint32_t>(candidate.segment)});
           neighbour_distance_sum_ += distance;
           ++neighbour_distance_count_;
-          observeSpacing(candidate.nearest_m);
+          if (measure) observeSpacing(candidate.nearest_m);
           added = true;
         }
       });
@@ -682,7 +700,7 @@ class Grower {
     return snapshot_;
   }
 
-  static constexpr std::uint64_t kMinFrontSamples = 32;
+  static constexpr std::uint64_t kMinFrontSamples = 16;
 
   lod::NodeCache& cache_;
   const lod::Octree& octree_;
