@@ -682,11 +682,7 @@ class Grower {
     segment_points_ = std::move(points);
     segment_refs_ = std::move(refs);
     segment_fit_levels_ = std::move(levels);
-    // The neighbour index follows the points' new segments, for any later use.
-    assigned_.clear();
-    for (std::uint32_t s = 0; s < n; ++s) {
-      for (const Eigen::Vector3d& p : segment_points_[s]) assigned_[grid_.keyOf(p)].push_back({p, s});
-    }
+    // assigned_ keeps the segments of before: settling is the grow's last step, nothing reads it.
   }
 
   GrowSnapshot finish(bool converged) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -20,6 +21,24 @@
 namespace plumb::reco {
 namespace {
 
+// The octree of a real scan, built into `dir`.
+std::shared_ptr<const lod::Octree> importScan(const std::string& path, const test::TempDirectory& dir) {
+  lod::BuildOptions build;
+  build.sources = lod::fileSources({path});
+  build.output = dir.file("scan.plumb");
+  lod::buildOctree(build);
+  return lod::Octree::open(build.output);
+}
+
+// The segment the click lies on: the one whose plane is nearest the seed.
+const SegmentSnapshot* segmentAt(const GrowSnapshot& result, const Eigen::Vector3d& seed) {
+  const SegmentSnapshot* nearest = nullptr;
+  for (const SegmentSnapshot& segment : result.segments) {
+    if (nearest == nullptr || segment.plane.distance(seed) < nearest->plane.distance(seed)) nearest = &segment;
+  }
+  return nearest;
+}
+
 // pcl_room_scan1: a click on the wall near y = -1.46 (between x = -2.6 and 0.5, seen from 3 m)
 // gives a vertical plane: its normal is horizontal within 1 degree. Close to the limit on this
 // scan: its floor itself is tilted by 1.1 degrees, and this wall measures 0.95 degrees here
@@ -27,21 +46,13 @@ namespace {
 TEST(GrowRealData, AWallOfTheRoomScanIsVertical) {
   PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
   test::TempDirectory dir;
-  lod::BuildOptions build;
-  build.sources = lod::fileSources({path});
-  build.output = dir.file("room.plumb");
-  lod::buildOctree(build);
-  lod::NodeCache cache(lod::Octree::open(build.output), 256 << 20);
+  lod::NodeCache cache(importScan(path, dir), 256 << 20);
 
   const Eigen::Vector3d seed(-1.0, -1.46, 0.4);
   const GrowSnapshot result = growRegions(cache, parametersForView(viewFromDistance(seed, 3.0)));
   ASSERT_TRUE(result.converged);
   ASSERT_FALSE(result.segments.empty());
-  // The segment the click lies on: the nearest plane to the seed.
-  const SegmentSnapshot* wall = nullptr;
-  for (const SegmentSnapshot& segment : result.segments) {
-    if (wall == nullptr || segment.plane.distance(seed) < wall->plane.distance(seed)) wall = &segment;
-  }
+  const SegmentSnapshot* wall = segmentAt(result, seed);
   const double tilt_deg = std::asin(std::min(1.0, std::abs(wall->plane.normal.z()))) * 180.0 / M_PI;
   RecordProperty("wall_normal_tilt_deg", std::to_string(tilt_deg));
   EXPECT_LT(tilt_deg, 1.0) << "normal " << wall->plane.normal.transpose();
@@ -86,11 +97,7 @@ std::vector<LabelledPoint> readNuistLabels(const std::string& path) {
 TEST(GrowRealData, AFacadeWallOfTheStreetScanIsWallNotWindow) {
   PLUMB_REQUIRE_SHARED_DATA(path, "nuist_commercial_street_facades.ply");
   test::TempDirectory dir;
-  lod::BuildOptions build;
-  build.sources = lod::fileSources({path});
-  build.output = dir.file("street.plumb");
-  lod::buildOctree(build);
-  const auto octree = lod::Octree::open(build.output);
+  const auto octree = importScan(path, dir);
   lod::NodeCache cache(octree, 256 << 20);
 
   // A wall point of building 2, in a square metre of wall with no window or door point.
@@ -100,10 +107,7 @@ TEST(GrowRealData, AFacadeWallOfTheStreetScanIsWallNotWindow) {
   const GrowSnapshot result = growRegions(cache, parametersForView(viewFromDistance(seed, 3.0)), options);
   ASSERT_TRUE(result.converged);
   ASSERT_FALSE(result.segments.empty());
-  const SegmentSnapshot* wall = nullptr;
-  for (const SegmentSnapshot& segment : result.segments) {
-    if (wall == nullptr || segment.plane.distance(seed) < wall->plane.distance(seed)) wall = &segment;
-  }
+  const SegmentSnapshot* wall = segmentAt(result, seed);
 
   // Each member's label: the input point at its position (within 0.1 mm: the octree stores
   // positions as floats relative to their cell).
