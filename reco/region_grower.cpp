@@ -324,10 +324,9 @@ class Grower {
     membership_.assign(state.refs[index], segment);
     state.assigned[index] = 1;
     const Eigen::Vector3d& p = state.points[index];
-    if (takesFit(segment, p, level_of_assignment_)) regressions_[segment].add(p);
+    regressions_[segment].add(p);
     segment_points_[segment].push_back(p);
     segment_refs_[segment].push_back(state.refs[index]);
-    segment_fit_levels_[segment].push_back(level_of_assignment_);
     assigned_[grid_.keyOf(p)].push_back({p, segment});
     grown_[segment] = true;
     // The plane follows the regression as it grows (the paper tests each point against the
@@ -380,22 +379,6 @@ class Grower {
     }
     snapshot_.search_radius_m = radius_;
     return widen;
-  }
-
-  // Whether p enters the segment's regression: at most one point per square of the level's
-  // spacing on the segment's plane. The octree keeps one point per cube of that spacing, so a
-  // noisy wall whose band of points straddles a face of those cubes gets a second point in
-  // every column there, all from the tail of the noise on the far side of the face: fitted
-  // as they come, they pull the plane by a sizeable fraction of the noise towards the cube
-  // faces. An areally uniform sample has no such bias. Every point still joins the segment.
-  bool takesFit(std::uint32_t segment, const Eigen::Vector3d& p, std::uint32_t level) {
-    if (!options_.areal_fit_sample) return true;
-    const FitFrame& frame = fit_frames_[segment];
-    const double inverse = 1.0 / octree_.spacing(level);
-    const Eigen::Vector3d d = p - frame.origin;
-    const auto u = static_cast<std::int64_t>(std::floor(d.dot(frame.u) * inverse));
-    const auto v = static_cast<std::int64_t>(std::floor(d.dot(frame.v) * inverse));
-    return fit_squares_[segment].insert(GridKey{u, v, static_cast<std::int64_t>(level)}).second;
   }
 
   void seed() {
@@ -455,13 +438,8 @@ class Grower {
     thresholds_.assign(planes.size(), parameters_.plane_threshold_m);
     segment_points_.resize(planes.size());
     segment_refs_.resize(planes.size());
-    segment_fit_levels_.resize(planes.size());
     grown_.assign(planes.size(), false);
-    fit_frames_.resize(planes.size());
-    fit_squares_.resize(planes.size());
-    level_of_assignment_ = base_level_;
     for (std::uint32_t s = 0; s < planes.size(); ++s) {
-      fit_frames_[s] = {planes[s].plane.centroid, planes[s].plane.tangent, planes[s].plane.bitangent};
       planes_[s] = planes[s].plane;  // the RANSAC refit, until the regression takes over
       updateThreshold(s);
       for (std::uint32_t i : planes[s].inliers) {
@@ -525,7 +503,6 @@ class Grower {
     working_level_ = key.level;  // new neighbours start at this cell's level
     CellState& state = loaded(key);
     state.processed = true;
-    level_of_assignment_ = key.level;
     std::vector<Assigned> queue = std::move(state.frontier);
     state.frontier.clear();
     bool added = false;
@@ -594,7 +571,6 @@ class Grower {
       SegmentSnapshot& segment = snapshot_.segments[s];
       segment.plane = planes_[s];
       segment.points = segment_points_[s].size();
-      segment.fit_points = regressions_[s].count();
       total += segment.points;
       if (!planes_[s].valid) {
         segment.outline.reset();
@@ -638,7 +614,6 @@ class Grower {
     if (n < 2) return;
     std::vector<std::vector<Eigen::Vector3d>> points(n);
     std::vector<std::vector<lod::PointRef>> refs(n);
-    std::vector<std::vector<std::uint32_t>> levels(n);
     bool moved = false;
     for (std::uint32_t s = 0; s < n; ++s) {
       for (std::size_t i = 0; i < segment_points_[s].size(); ++i) {
@@ -665,23 +640,18 @@ class Grower {
         moved = moved || best != s;
         points[best].push_back(p);
         refs[best].push_back(segment_refs_[s][i]);
-        levels[best].push_back(segment_fit_levels_[s][i]);
       }
     }
     if (!moved) return;
     for (std::uint32_t s = 0; s < n; ++s) {
       PlaneRegression regression;
-      fit_squares_[s].clear();
-      for (std::size_t i = 0; i < points[s].size(); ++i) {
-        if (takesFit(s, points[s][i], levels[s][i])) regression.add(points[s][i]);
-      }
+      for (const Eigen::Vector3d& p : points[s]) regression.add(p);
       for (const lod::PointRef& ref : refs[s]) membership_.assign(ref, s);
       regressions_[s] = regression;
       refit(s);
     }
     segment_points_ = std::move(points);
     segment_refs_ = std::move(refs);
-    segment_fit_levels_ = std::move(levels);
     // assigned_ keeps the segments of before: settling is the grow's last step, nothing reads it.
   }
 
@@ -718,13 +688,6 @@ class Grower {
   std::vector<double> thresholds_;                              // per segment: what a point may be off its plane
   std::vector<std::vector<Eigen::Vector3d>> segment_points_;    // for outlines, edges and corners
   std::vector<std::vector<lod::PointRef>> segment_refs_;        // the same points' identities
-  std::vector<std::vector<std::uint32_t>> segment_fit_levels_;  // and the level each was gathered at
-  struct FitFrame {
-    Eigen::Vector3d origin, u, v;  // the seed plane's centroid, tangent and bitangent
-  };
-  std::vector<FitFrame> fit_frames_;
-  std::vector<std::unordered_set<GridKey, GridKeyHash>> fit_squares_;  // squares with a fitted point
-  std::uint32_t level_of_assignment_ = 0;                              // the level of the cell being grown
   std::vector<bool> grown_;
   std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
   std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found

@@ -42,9 +42,6 @@ struct GrowOptions {
   // noise_sigmas = 0 gives the paper's plain t_p.
   double noise_sigmas = 4.0;
   double min_threshold_fraction = 0.1;
-  // Fit each plane on at most one point per square of the level's spacing on the plane: the
-  // octree's cubic sampling grid over-represents the noise tails of surfaces near its cube faces.
-  bool areal_fit_sample = true;
   // After convergence, move each point to the nearest plane among the segments around it and
   // refit (the growth gives a point to whichever segment reaches it first).
   bool settle = true;
@@ -58,7 +55,6 @@ struct GrowOptions {
 struct SegmentSnapshot {
   Plane plane;                   // synthesised from the regression (valid once it has 3 points)
   std::uint64_t points = 0;      // inliers added, seed points included
-  std::uint64_t fit_points = 0;  // of which in the regression (GrowOptions::areal_fit_sample)
   // The regression polygon (section 3.6, progress callback): the outline of the segment's points
   // on its plane, alpha = r, with its triangulation; area = outline->shape.area_m2. Shared and
   // immutable. To keep snapshots cheap it is redrawn when the segment has grown by a quarter

@@ -2,9 +2,11 @@
 //
 //   1. A node with at most leaf_max_points points, or at a level whose cells are smaller than
 //      kMinCellSize, is a leaf: it keeps all its points.
-//   2. Otherwise, mark the cells of the 128^3 grid over the node that hold a point of a coarser
-//      level; in every other occupied grid cell keep the point of the smallest position hash
-//      (ties, i.e. duplicates: the earlier point), and move those points to the front.
+//   2. Otherwise, thin its points to about one point per occupied cell of the 128^3 grid over
+//      the node, the points of coarser levels included: each grid cell keeps, of its own points,
+//      the ones of lowest position hash, as many as its share of what its 3^3 neighbourhood
+//      lacks (its occupied cells less the coarser points there), in proportion to its points.
+//      Move those points to the front.
 //   3. Partition the rest by child octant and build each non-empty child the same way, passing
 //      down the coarser points and this node's own selection that lie in the child.
 //   4. Hand the node to the sink after its children, with the mask of the children that exist.
@@ -23,21 +25,26 @@ namespace plumb::lod {
 namespace {
 
 constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
-constexpr std::uint32_t kTaken = kEmpty - 1;  // holds a point of a coarser level
 constexpr std::size_t kGridCells = std::size_t{kSamplingGrid} * kSamplingGrid * kSamplingGrid;
-// A pseudo-random number in [0, 1) from the bits of a position (splitmix64 finaliser): the same
-// point scores the same whatever the order of the input or the chunking of the build.
-double positionScore(const Position& p) {
+constexpr std::uint32_t kReach = 1;  // a grid cell's neighbourhood: the cells within this many steps
+std::uint64_t mix(std::uint64_t h) {  // the splitmix64 finaliser
+  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
+  return h ^ (h >> 31);
+}
+
+double unitInterval(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
+
+// A pseudo-random number from the bits of a position: the same point scores the same whatever
+// the order of the input or the chunking of the build.
+std::uint64_t positionHash(const Position& p) {
   std::uint64_t h = 0x9E3779B97F4A7C15ULL;
   for (const double c : p) {
     std::uint64_t bits = 0;
     std::memcpy(&bits, &c, sizeof bits);
-    h ^= bits + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
-    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
-    h ^= h >> 31;
+    h = mix(h ^ (bits + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2)));
   }
-  return static_cast<double>(h >> 11) * 0x1.0p-53;
+  return h;
 }
 
 // Below a tenth of a millimetre a node stops splitting: its points are as good as duplicates.
@@ -54,52 +61,88 @@ bool NodeIndexer::isLeaf(const CellKey& key, std::size_t count) const {
 
 std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoint> points,
                                          std::span<const Position> coarser) {
-  if (best_index_.empty()) {
-    best_index_.assign(kGridCells, kEmpty);
-    best_score_.assign(kGridCells, 0.0f);
-  }
+  if (slot_of_cell_.empty()) slot_of_cell_.assign(kGridCells, kEmpty);
   const Box3 box = cube_.cellBox(key);
   const double inverse_step = kSamplingGrid / cube_.cellSize(key.level);
-  // Which point of a grid cell stands for it: the one whose position hashes lowest, a choice
-  // independent of where in the cell the point lies. Any geometric rule (nearest the cell's
-  // centre, or its lower corner) prefers, on a noisy wall, the points on one side of the wall, and
-  // biases every plane fitted to a coarse level by a good fraction of the noise, more so the more
-  // points compete for a cell (docs/octree-format.md).
   auto locate = [&](const Position& p) {
-    std::size_t cell = 0;
+    std::uint32_t cell = 0;
     for (std::size_t a = 0; a < 3; ++a) {
       const double local = (p[a] - box.min[a]) * inverse_step;
       const double index = std::clamp(std::floor(local), 0.0, double{kSamplingGrid - 1});
-      cell = cell * kSamplingGrid + static_cast<std::size_t>(index);
+      cell = cell * kSamplingGrid + static_cast<std::uint32_t>(index);
     }
     return cell;
   };
+  auto slotOf = [&](std::uint32_t cell) {
+    std::uint32_t& slot = slot_of_cell_[cell];
+    if (slot == kEmpty) {
+      slot = static_cast<std::uint32_t>(slots_.size());
+      slots_.push_back({cell});
+    }
+    return slot;
+  };
 
-  touched_.clear();
-  for (const Position& p : coarser) {
-    const std::size_t cell = locate(p);
-    if (best_index_[cell] == kEmpty) touched_.push_back(static_cast<std::uint32_t>(cell));
-    best_index_[cell] = kTaken;
-  }
+  // 1. Count, per occupied grid cell, the coarser points and this node's points.
+  slots_.clear();
+  for (const Position& p : coarser) ++slots_[slotOf(locate(p))].coarser;
+  slot_of_point_.resize(points.size());
+  score_.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Position p{points[i].x, points[i].y, points[i].z};
-    const std::size_t cell = locate(p);
-    const auto d = static_cast<float>(positionScore(p));
-    const std::uint32_t best = best_index_[cell];
-    if (best == kTaken) continue;
-    if (best == kEmpty) {
-      touched_.push_back(static_cast<std::uint32_t>(cell));
-    } else if (!(d < best_score_[cell])) {
-      continue;
+    const std::uint32_t slot = slotOf(locate(p));
+    ++slots_[slot].own;
+    slot_of_point_[i] = slot;
+    score_[i] = positionHash(p);
+  }
+
+  // 2. Each cell's quota: its share of what its 3^3 neighbourhood still needs to reach one point
+  //    per occupied cell, in proportion to its own points, with a deterministic random rounding.
+  for (Slot& slot : slots_) {
+    const std::uint32_t cx = slot.cell / (kSamplingGrid * kSamplingGrid);
+    const std::uint32_t cy = slot.cell / kSamplingGrid % kSamplingGrid;
+    const std::uint32_t cz = slot.cell % kSamplingGrid;
+    std::uint32_t occupied = 0, held = 0, own = 0;
+    for (std::uint32_t x = cx - std::min(cx, kReach); x <= std::min(cx + kReach, kSamplingGrid - 1); ++x) {
+      for (std::uint32_t y = cy - std::min(cy, kReach); y <= std::min(cy + kReach, kSamplingGrid - 1); ++y) {
+        for (std::uint32_t z = cz - std::min(cz, kReach); z <= std::min(cz + kReach, kSamplingGrid - 1); ++z) {
+          const std::uint32_t other = slot_of_cell_[(x * kSamplingGrid + y) * kSamplingGrid + z];
+          if (other == kEmpty) continue;
+          ++occupied;
+          held += slots_[other].coarser;
+          own += slots_[other].own;
+        }
+      }
     }
-    best_index_[cell] = static_cast<std::uint32_t>(i);
-    best_score_[cell] = d;
+    slot.quota = 0;
+    if (slot.own == 0 || occupied <= held) continue;
+    const double fraction = std::min(1.0, double(occupied - held) / own);
+    const double share = fraction * slot.own;
+    const double dither = unitInterval(mix(slot.cell ^ (std::uint64_t{key.level} << 32) ^ key.x * 0x9E3779B1ULL ^
+                                           key.y * 0x85EBCA77ULL ^ key.z * 0xC2B2AE3DULL));
+    slot.quota = static_cast<std::uint32_t>(std::floor(share + dither));
   }
+
+  // 3. Group the points by cell (a counting sort) and keep the `quota` of lowest hash in each.
+  std::uint32_t offset = 0;
+  for (Slot& slot : slots_) {
+    slot.first = offset;
+    offset += slot.own;
+  }
+  order_.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) order_[slots_[slot_of_point_[i]].first++] = static_cast<std::uint32_t>(i);
   selected_.assign(points.size(), 0);
-  for (std::uint32_t cell : touched_) {
-    if (best_index_[cell] != kTaken) selected_[best_index_[cell]] = 1;
-    best_index_[cell] = kEmpty;  // leave the scratch clean for the next node
+  for (const Slot& slot : slots_) {
+    const auto begin = order_.begin() + (slot.first - slot.own);
+    const auto end = order_.begin() + slot.first;
+    const auto keep = begin + std::min(slot.quota, slot.own);
+    // Ties (duplicates) are broken by input position, so the choice is deterministic.
+    std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
+      return score_[a] != score_[b] ? score_[a] < score_[b] : a < b;
+    });
+    for (auto it = begin; it != keep; ++it) selected_[*it] = 1;
   }
+  for (const Slot& slot : slots_) slot_of_cell_[slot.cell] = kEmpty;  // clean for the next node
+
   // Two-pointer partition carrying the flags along with the points.
   std::size_t front = 0, back = points.size();
   while (front < back) {

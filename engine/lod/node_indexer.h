@@ -1,11 +1,15 @@
 #pragma once
 // Turns the points of one cell into that cell's subtree of octree nodes (paper section 3.1):
-// an inner node keeps a grid subsample of its points, at most one point per cell of a 128^3
-// grid over the node (the point of that grid cell whose position hashes lowest: no side of a
-// noisy surface preferred), and hands the rest to its children; a node with at most leaf_max_points points (or too
-// small to split) is a leaf and keeps them all. Grid cells that already hold a point of a coarser level take no new
-// one, so the points of levels 0..L together have one point per grid cell of level L: a near-uniform spacing of cube
-// size / 128 / 2^L. Every input point is kept exactly once.
+// an inner node keeps a thinned subsample of its points, about one point per occupied cell of a
+// 128^3 grid over the node, and hands the rest to its children; a node with at most
+// leaf_max_points points (or too small to split) is a leaf and keeps them all. The points of
+// levels 0..L together hold about one point per occupied grid cell of level L: a near-uniform
+// spacing of cube size / 128 / 2^L. Every input point is kept exactly once.
+//
+// The thinning keeps every point of a neighbourhood equally likely, wherever in its grid cell it
+// lies. One point per grid cell would not: where a noisy wall's band of points straddles a grid
+// plane, the few points beyond it get a cell, and a point, of their own, and every plane fitted to
+// a coarse level moves towards the grid plane by a good part of the noise (docs/octree-format.md).
 
 #include <cstdint>
 #include <functional>
@@ -78,10 +82,19 @@ class NodeIndexer {
 
   Cube cube_;
   std::uint32_t leaf_max_points_;
-  // Scratch for selectSubsample, reused across nodes: per grid cell the best point so far.
-  std::vector<std::uint32_t> best_index_;
-  std::vector<float> best_score_;
-  std::vector<std::uint32_t> touched_;
+  // Scratch for selectSubsample, reused across nodes.
+  struct Slot {  // an occupied grid cell
+    std::uint32_t cell = 0;
+    std::uint32_t coarser = 0;  // points of coarser levels in it
+    std::uint32_t own = 0;      // this node's points in it
+    std::uint32_t quota = 0;    // how many of them it keeps
+    std::uint32_t first = 0;    // where its points start in order_, then where they end
+  };
+  std::vector<std::uint32_t> slot_of_cell_;  // kSamplingGrid^3, empty between nodes
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> slot_of_point_;
+  std::vector<std::uint64_t> score_;
+  std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> selected_;
   std::vector<std::uint8_t> octants_;
 };

@@ -23,7 +23,8 @@ constexpr std::uint32_t kOctreeVersion = 1;
 constexpr std::size_t kHeaderBytes = 256;
 constexpr std::size_t kIndexEntryBytes = 40;
 constexpr std::size_t kPointBytes = 20;
-// Inner cells keep one point per cell of a kSamplingGrid^3 grid: their spacing is size / 128.
+// Inner cells keep about one point per occupied cell of a kSamplingGrid^3 grid: their spacing
+// is size / 128 (docs/octree-format.md).
 constexpr std::uint32_t kSamplingGrid = 128;
 
 enum AttributeFlags : std::uint32_t { kHasColour = 1, kHasIntensity = 2 };

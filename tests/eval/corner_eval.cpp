@@ -295,6 +295,7 @@ struct Settings {
   // 0: the plane threshold of the automatic parameters (20 mm) at every noise level; K > 0: the
   // larger of that and K x the noise.
   double tp_sigmas = 0.0;
+  double noise_sigmas = reco::GrowOptions{}.noise_sigmas;
 };
 
 std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std::uint32_t repetition) {
@@ -351,6 +352,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
       const reco::GrowParameters parameters = parametersFor(detailLevel(detail), click, *octree, plane_threshold_m);
       reco::GrowOptions options;
       options.random_seed = repetition;
+      options.noise_sigmas = settings.noise_sigmas;
       // A grow that runs away would hold up the whole evaluation: cancelled past the limit, it
       // counts as lost and as timed out. The grower looks at the flag between cells.
       std::atomic<bool> cancel{false};
@@ -607,6 +609,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--tp-sigmas", settings.tp_sigmas,
                  "Plane threshold t_p as this many noise sigmas, never below the automatic 20 mm (0: always 20 mm)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--noise-sigmas", settings.noise_sigmas,
+                 "Inlier threshold at most this many times the plane's RMS (0: t_p alone)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);

@@ -309,11 +309,10 @@ TEST(RegionGrower, AStairTreadDoesNotCreepUpItsRisers) {
     ++by_patch[cache.get(octree->nodes()[ref.node].key)->points[ref.index].rgb[0]];
   }
   const std::uint64_t tread_points = pointsOfPatchAtLevel(cache, result.level, 2);
-  std::printf("tread %llu of %llu, risers %llu + %llu, offset %.3f mm, fit points %llu\n",
+  std::printf("tread %llu of %llu, risers %llu + %llu, offset %.3f mm\n",
               static_cast<unsigned long long>(by_patch[2]), static_cast<unsigned long long>(tread_points),
               static_cast<unsigned long long>(by_patch[1]), static_cast<unsigned long long>(by_patch[3]),
-              1e3 * tread.plane.signedDistance(kUtm + Eigen::Vector3d(0, 0, 0.18)),
-              static_cast<unsigned long long>(tread.fit_points));
+              1e3 * tread.plane.signedDistance(kUtm + Eigen::Vector3d(0, 0, 0.18)));
   EXPECT_NEAR(static_cast<double>(by_patch[2]), static_cast<double>(tread_points),
               0.03 * static_cast<double>(tread_points));
   // At most the few millimetres of each riser that the noise cannot tell from the tread.
