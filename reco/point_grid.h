@@ -4,6 +4,8 @@
 // within one step of it.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -35,15 +37,33 @@ class PointGrid {
   }
 
   // Calls visit(key) for the 27 grid cells around p's cell: all that can hold points within one
-  // step of p.
+  // step of p. p's own cell comes first, where a search for the nearest point is likeliest to
+  // find it and can then skip the cells farther than that (squaredDistanceToCell).
   template <typename Visit>
   void forEachAround(const Eigen::Vector3d& p, Visit&& visit) const {
     const GridKey k = keyOf(p);
+    visit(k);
     for (std::int64_t dz = -1; dz <= 1; ++dz) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dx = -1; dx <= 1; ++dx) visit(GridKey{k.x + dx, k.y + dy, k.z + dz});
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          if (dx != 0 || dy != 0 || dz != 0) visit(GridKey{k.x + dx, k.y + dy, k.z + dz});
+        }
       }
     }
+  }
+
+  // The squared distance from p to the nearest point of grid cell `key` (0 inside it).
+  double squaredDistanceToCell(const Eigen::Vector3d& p, const GridKey& key) const {
+    const Eigen::Vector3d g = (p - origin_) * inverse_;
+    const std::array<double, 3> low{static_cast<double>(key.x), static_cast<double>(key.y), static_cast<double>(key.z)};
+    double sum = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double below = low[static_cast<std::size_t>(a)] - g[a];
+      const double above = g[a] - (low[static_cast<std::size_t>(a)] + 1.0);
+      const double gap = std::max({below, above, 0.0});
+      sum += gap * gap;
+    }
+    return sum / (inverse_ * inverse_);
   }
 
  private:

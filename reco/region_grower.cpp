@@ -38,6 +38,7 @@
 
 #include "reco/cell_claims.h"
 #include "reco/point_grid.h"
+#include "reco/point_spacing.h"
 #include "reco/seed_planes.h"
 
 namespace plumb::reco {
@@ -88,6 +89,14 @@ class Membership {
 struct Assigned {
   Eigen::Vector3d position;
   std::uint32_t segment;
+};
+
+// The assigned points of one neighbour-grid cell, and which segments they belong to: a search
+// for "a point of each segment within r" skips the cells with no segment it has not yet seen,
+// which, where the points are dense, is nearly all of them.
+struct AssignedCell {
+  std::uint32_t segments = 0;  // bit s: a point of segment s is here
+  std::vector<Assigned> points;
 };
 
 struct CellState {
@@ -327,7 +336,9 @@ class Grower {
     regressions_[segment].add(p);
     segment_points_[segment].push_back(p);
     segment_refs_[segment].push_back(state.refs[index]);
-    assigned_[grid_.keyOf(p)].push_back({p, segment});
+    AssignedCell& cell = assigned_[grid_.keyOf(p)];
+    cell.segments |= 1u << segment;
+    cell.points.push_back({p, segment});
     grown_[segment] = true;
     // The plane follows the regression as it grows (the paper tests each point against the
     // current regression): refit whenever the support has grown by a tenth, so a seed plane
@@ -336,41 +347,22 @@ class Grower {
     spreadFrontier(p, segment);
   }
 
-  // The median distance from a point to its nearest other point, over a sample of `points`, as
-  // far as `step` (farther neighbours count as `step`). Duplicates (distance 0) are no neighbours.
-  static double medianNearestDistance(const std::vector<Eigen::Vector3d>& points, double step) {
-    if (points.size() < 2) return 0.0;
-    PointGrid grid(points.front(), step);
-    std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> cells;
-    for (std::uint32_t i = 0; i < points.size(); ++i) cells[grid.keyOf(points[i])].push_back(i);
-    constexpr std::size_t kSamples = 512;
-    const std::size_t stride = std::max<std::size_t>(1, points.size() / kSamples);
-    std::vector<double> nearest;
-    for (std::size_t i = 0; i < points.size(); i += stride) {
-      double best2 = step * step;
-      grid.forEachAround(points[i], [&](const GridKey& key) {
-        const auto it = cells.find(key);
-        if (it == cells.end()) return;
-        for (std::uint32_t j : it->second) {
-          const double d2 = (points[j] - points[i]).squaredNorm();
-          if (d2 > 0.0 && d2 < best2) best2 = d2;
-        }
-      });
-      nearest.push_back(std::sqrt(best2));
-    }
-    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
-    return nearest[nearest.size() / 2];
-  }
-
   // Section 3.7: r is twice the mean point spacing. The spacing d asks for is what the octree
   // gives where the scan is dense enough; where it is sparser (a distant wall, or --detail full,
   // which asks for the deepest level's spacing), the points are farther apart than d implies and
   // a search radius of twice d's spacing finds no neighbours. The seed points tell the spacing the
-  // data has, and r follows the larger of the two. The density the grow aims for stays d: where
-  // the octree has finer points further on, the adaptive resolution goes and gets them.
-  // Returns whether r changed.
-  bool adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points) {
-    const double data_spacing = medianNearestDistance(seed_points, 0.5 * parameters_.seed_radius_m);
+  // data has: the median nearest-neighbour distance, and each seed plane's areal spacing, which
+  // also sees the gaps between scan lines (point_spacing.h). r follows the largest, at most half
+  // of r_s. The density the grow aims for stays d: where the octree has finer points further on,
+  // the adaptive resolution goes and gets them. Returns whether r changed.
+  bool adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes) {
+    double data_spacing = medianNearestDistance(seed_points, 0.5 * parameters_.seed_radius_m);
+    std::vector<Eigen::Vector3d> inliers;
+    for (const SeedPlane& plane : planes) {
+      inliers.clear();
+      for (std::uint32_t i : plane.inliers) inliers.push_back(seed_points[i]);
+      data_spacing = std::max(data_spacing, arealSpacing(plane.plane, inliers));
+    }
     snapshot_.data_spacing_m = data_spacing;
     const bool widen = 2.0 * data_spacing > radius_;
     if (widen) {
@@ -399,30 +391,15 @@ class Grower {
           const CellKey key{base_level_, x, y, z};
           if (octree_.cube().squaredDistance(key, seed_array) > rs * rs) continue;
           seed_cells.push_back(key);
-          // Loaded before r is known: the neighbour grid of the cell is built anew below.
+          claims_.claim(key);
+          // Loaded before r is known: the neighbour grid of the cell is built anew below if r widens.
           const CellState& state = loaded(key);
-          for (const Eigen::Vector3d& position : state.points) {
-            if ((position - parameters_.seed).squaredNorm() <= rs * rs) points.push_back(position);
+          for (std::uint32_t i = 0; i < state.points.size(); ++i) {
+            if ((state.points[i] - parameters_.seed).squaredNorm() <= rs * rs) {
+              points.push_back(state.points[i]);
+              origin.emplace_back(key, i);
+            }
           }
-        }
-      }
-    }
-    if (adaptToDataSpacing(points)) {
-      for (const CellKey& key : seed_cells) {
-        CellState& state = cells_[key];
-        state.by_grid.clear();
-        for (std::uint32_t i = 0; i < state.points.size(); ++i)
-          state.by_grid[grid_.keyOf(state.points[i])].push_back(i);
-      }
-    }
-    points.clear();
-    for (const CellKey& key : seed_cells) {
-      claims_.claim(key);
-      CellState& state = cells_[key];
-      for (std::uint32_t i = 0; i < state.points.size(); ++i) {
-        if ((state.points[i] - parameters_.seed).squaredNorm() <= rs * rs) {
-          points.push_back(state.points[i]);
-          origin.emplace_back(key, i);
         }
       }
     }
@@ -432,6 +409,14 @@ class Grower {
     seed_options.drop_unstable = options_.drop_unstable;
     seed_options.seed = options_.random_seed;
     const std::vector<SeedPlane> planes = findSeedPlanes(points, seed_options);
+    if (adaptToDataSpacing(points, planes)) {
+      for (const CellKey& key : seed_cells) {
+        CellState& state = cells_[key];
+        state.by_grid.clear();
+        for (std::uint32_t i = 0; i < state.points.size(); ++i)
+          state.by_grid[grid_.keyOf(state.points[i])].push_back(i);
+      }
+    }
     regressions_.resize(planes.size());
     planes_.resize(planes.size());
     fitted_count_.assign(planes.size(), 0);
@@ -455,8 +440,8 @@ class Grower {
   // The segment an unassigned point p joins: the nearest plane within its threshold among the segments
   // with an assigned point within r of p; and how far the nearest assigned point is.
   // `measure`: also find the nearest assigned point (what the adaptive resolution observes), at
-  // the cost of a distance to every assigned point around; otherwise each segment's first
-  // point within r ends its search.
+  // the cost of a distance to every assigned point of the cells around that may hold a nearer
+  // one (p's own cell first); otherwise each segment's first point within r ends its search.
   Candidate bestSegment(const Eigen::Vector3d& p, bool measure) {
     Candidate best;
     double best_distance = INFINITY;
@@ -465,7 +450,9 @@ class Grower {
     grid_.forEachAround(p, [&](const GridKey& key) {
       const auto it = assigned_.find(key);
       if (it == assigned_.end()) return;
-      for (const Assigned& a : it->second) {
+      const bool unseen = (it->second.segments & ~seen_mask) != 0;
+      if (!unseen && (!measure || grid_.squaredDistanceToCell(p, key) >= nearest2)) return;
+      for (const Assigned& a : it->second.points) {
         if (!measure && ((seen_mask >> a.segment) & 1u)) continue;
         const double d2 = (a.position - p).squaredNorm();
         if (d2 > radius_ * radius_) continue;
@@ -623,8 +610,8 @@ class Grower {
         std::uint32_t near_mask = 0;
         grid_.forEachAround(p, [&](const GridKey& key) {
           const auto it = assigned_.find(key);
-          if (it == assigned_.end()) return;
-          for (const Assigned& a : it->second) {
+          if (it == assigned_.end() || (it->second.segments & ~(near_mask | (1u << s))) == 0) return;
+          for (const Assigned& a : it->second.points) {
             if (a.segment == s || ((near_mask >> a.segment) & 1u)) continue;
             if ((a.position - p).squaredNorm() <= radius_ * radius_) near_mask |= 1u << a.segment;
           }
@@ -692,7 +679,7 @@ class Grower {
   std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
   std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found
   std::unordered_map<CellKey, CellState, lod::CellKeyHash> cells_;
-  std::unordered_map<GridKey, std::vector<Assigned>, GridKeyHash> assigned_;
+  std::unordered_map<GridKey, AssignedCell, GridKeyHash> assigned_;
   std::priority_queue<std::pair<double, CellKey>, std::vector<std::pair<double, CellKey>>, std::greater<>> queue_;
   std::unordered_set<CellKey, lod::CellKeyHash> queued_;
   std::optional<CellKey> processing_;  // the cell whose breadth-first search is running

@@ -5,7 +5,7 @@
 //
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
 //                      [--details low,medium,high,full] [--jobs N] [--stations N]
-//                      [--grow-limit-s S] [--tp-sigmas K]
+//                      [--grow-limit-s S] [--tp-sigmas K] [--noise-sigmas N]
 //
 // For each noise level and repetition (the scanner's seed is the repetition, so reruns agree):
 //   1. simulate the room from both its stations at a UTM-like offset (as scripts/run does) into
@@ -292,9 +292,10 @@ struct Settings {
   // floor corners (7, 0, 0) and (0, 5, 0), which would be lost whatever the noise.
   std::size_t stations = 2;
   double grow_limit_s = 20.0;
-  // 0: the plane threshold of the automatic parameters (20 mm) at every noise level; K > 0: the
-  // larger of that and K x the noise.
-  double tp_sigmas = 0.0;
+  // t_p is the user's precision setting; a surveyor sets it from the scanner's noise. K > 0: the
+  // larger of the automatic parameters' 20 mm and K x the noise; 0: 20 mm at every noise level,
+  // which cuts off most of a 20 or 30 mm noise's points and stops the grow early.
+  double tp_sigmas = 3.0;
   double noise_sigmas = reco::GrowOptions{}.noise_sigmas;
 };
 
