@@ -95,27 +95,37 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     score_[i] = positionHash(p);
   }
 
-  // 2. Each cell's quota: its share of what its 3^3 neighbourhood still needs to reach one point
-  //    per occupied cell, in proportion to its own points, with a deterministic random rounding.
+  // 2. Each cell's quota: its share of what its 3^3 neighbourhood still needs to reach about one
+  //    point per occupied cell, in proportion to its own points, with a deterministic random
+  //    rounding. A cell counts as occupied in proportion to its points, up to the
+  //    neighbourhood's mean: the few points of a noise tail that reach into the next layer of
+  //    cells occupy it only a little, so a level's density on a wall does not grow with the
+  //    number of points scanned (ten times the points fill ten times the tail cells).
   for (Slot& slot : slots_) {
     const std::uint32_t cx = slot.cell / (kSamplingGrid * kSamplingGrid);
     const std::uint32_t cy = slot.cell / kSamplingGrid % kSamplingGrid;
     const std::uint32_t cz = slot.cell % kSamplingGrid;
-    std::uint32_t occupied = 0, held = 0, own = 0;
+    neighbours_.clear();
+    std::uint32_t held = 0, own = 0;
     for (std::uint32_t x = cx - std::min(cx, kReach); x <= std::min(cx + kReach, kSamplingGrid - 1); ++x) {
       for (std::uint32_t y = cy - std::min(cy, kReach); y <= std::min(cy + kReach, kSamplingGrid - 1); ++y) {
         for (std::uint32_t z = cz - std::min(cz, kReach); z <= std::min(cz + kReach, kSamplingGrid - 1); ++z) {
           const std::uint32_t other = slot_of_cell_[(x * kSamplingGrid + y) * kSamplingGrid + z];
           if (other == kEmpty) continue;
-          ++occupied;
+          neighbours_.push_back(other);
           held += slots_[other].coarser;
           own += slots_[other].own;
         }
       }
     }
+    const double mean = double(held + own) / static_cast<double>(neighbours_.size());
+    double occupied = 0.0;
+    for (const std::uint32_t other : neighbours_) {
+      occupied += std::min(1.0, double(slots_[other].coarser + slots_[other].own) / mean);
+    }
     slot.quota = 0;
     if (slot.own == 0 || occupied <= held) continue;
-    const double fraction = std::min(1.0, double(occupied - held) / own);
+    const double fraction = std::min(1.0, (occupied - held) / own);
     const double share = fraction * slot.own;
     const double dither = unitInterval(mix(slot.cell ^ (std::uint64_t{key.level} << 32) ^ key.x * 0x9E3779B1ULL ^
                                            key.y * 0x85EBCA77ULL ^ key.z * 0xC2B2AE3DULL));

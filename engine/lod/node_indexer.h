@@ -92,6 +92,7 @@ class NodeIndexer {
   };
   std::vector<std::uint32_t> slot_of_cell_;  // kSamplingGrid^3, empty between nodes
   std::vector<Slot> slots_;
+  std::vector<std::uint32_t> neighbours_;  // the occupied cells around one cell
   std::vector<std::uint32_t> slot_of_point_;
   std::vector<std::uint64_t> score_;
   std::vector<std::uint32_t> order_;

@@ -5,7 +5,7 @@
 //
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
 //                      [--details low,medium,high,full] [--jobs N] [--stations N]
-//                      [--grow-limit-s S] [--tp-sigmas K] [--noise-sigmas N]
+//                      [--grow-limit-s S] [--tp-sigmas K] [--noise-sigmas N] [--full-repetitions N]
 //
 // For each noise level and repetition (the scanner's seed is the repetition, so reruns agree):
 //   1. simulate the room from both its stations at a UTM-like offset (as scripts/run does) into
@@ -284,6 +284,9 @@ struct TemporaryDirectory {
 struct Settings {
   std::string out;
   std::uint32_t repetitions = 200;
+  // Full detail grows every point, ten times the work of the others: it may run on the first
+  // repetitions only (all of them when unset).
+  std::optional<std::uint32_t> full_repetitions;
   std::vector<double> noise_mm{1, 2, 5, 10, 20, 30};
   std::uint64_t points = 200'000;
   std::vector<std::string> details{"low", "medium", "high", "full"};
@@ -345,6 +348,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
     const double limit_mm = (*limit_corner - corner.position).norm() * 1e3;
 
     for (const std::string& detail : settings.details) {
+      if (detail == "full" && settings.full_repetitions && repetition >= *settings.full_repetitions) continue;
       // The seed radius does not depend on the click's exact place: the camera distance sets it.
       const double seed_radius_m =
           parametersFor(detailLevel(detail), corner.position, *octree, plane_threshold_m).seed_radius_m;
@@ -612,6 +616,8 @@ int main(int argc, char** argv) {
                  "Plane threshold t_p as this many noise sigmas, never below the automatic 20 mm (0: always 20 mm)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  app.add_option("--full-repetitions", settings.full_repetitions,
+                 "Run full detail on the first N repetitions only (default: all)");
   app.add_option("--noise-sigmas", settings.noise_sigmas,
                  "Inlier threshold at most this many times the plane's RMS (0: t_p alone)")
       ->check(CLI::Range(0.0, 100.0))
