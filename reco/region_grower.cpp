@@ -670,11 +670,11 @@ class Grower {
 
   GrowSnapshot snapshot_;
   std::vector<PlaneRegression> regressions_;
-  std::vector<Plane> planes_;                                   // the regressions' planes, refitted as they grow
-  std::vector<std::uint64_t> fitted_count_;                     // regression size at the last refit
-  std::vector<double> thresholds_;                              // per segment: what a point may be off its plane
-  std::vector<std::vector<Eigen::Vector3d>> segment_points_;    // for outlines, edges and corners
-  std::vector<std::vector<lod::PointRef>> segment_refs_;        // the same points' identities
+  std::vector<Plane> planes_;                                 // the regressions' planes, refitted as they grow
+  std::vector<std::uint64_t> fitted_count_;                   // regression size at the last refit
+  std::vector<double> thresholds_;                            // per segment: what a point may be off its plane
+  std::vector<std::vector<Eigen::Vector3d>> segment_points_;  // for outlines, edges and corners
+  std::vector<std::vector<lod::PointRef>> segment_refs_;      // the same points' identities
   std::vector<bool> grown_;
   std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
   std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found

@@ -53,8 +53,8 @@ struct GrowOptions {
 
 // One segment: a regression and what it has gathered.
 struct SegmentSnapshot {
-  Plane plane;                   // synthesised from the regression (valid once it has 3 points)
-  std::uint64_t points = 0;      // inliers added, seed points included
+  Plane plane;               // synthesised from the regression (valid once it has 3 points)
+  std::uint64_t points = 0;  // inliers added, seed points included
   // The regression polygon (section 3.6, progress callback): the outline of the segment's points
   // on its plane, alpha = r, with its triangulation; area = outline->shape.area_m2. Shared and
   // immutable. To keep snapshots cheap it is redrawn when the segment has grown by a quarter

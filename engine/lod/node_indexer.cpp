@@ -26,14 +26,16 @@ namespace {
 
 constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
 constexpr std::size_t kGridCells = std::size_t{kSamplingGrid} * kSamplingGrid * kSamplingGrid;
-constexpr std::uint32_t kReach = 1;  // a grid cell's neighbourhood: the cells within this many steps
+constexpr std::uint32_t kReach = 1;   // a grid cell's neighbourhood: the cells within this many steps
 std::uint64_t mix(std::uint64_t h) {  // the splitmix64 finaliser
   h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
   h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
   return h ^ (h >> 31);
 }
 
-double unitInterval(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
+double unitInterval(std::uint64_t h) {
+  return static_cast<double>(h >> 11) * 0x1.0p-53;
+}
 
 // A pseudo-random number from the bits of a position: the same point scores the same whatever
 // the order of the input or the chunking of the build.
@@ -139,7 +141,8 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     offset += slot.own;
   }
   order_.resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) order_[slots_[slot_of_point_[i]].first++] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    order_[slots_[slot_of_point_[i]].first++] = static_cast<std::uint32_t>(i);
   selected_.assign(points.size(), 0);
   for (const Slot& slot : slots_) {
     const auto begin = order_.begin() + (slot.first - slot.own);

@@ -15,7 +15,8 @@ std::vector<Eigen::Vector3d> scanLines(double along, double across, int columns,
   const Eigen::Vector3d origin(512000.25, 5403000.5, 250.0);
   std::vector<Eigen::Vector3d> points;
   for (int row = 0; row < rows; ++row) {
-    for (int column = 0; column < columns; ++column) points.push_back(origin + Eigen::Vector3d(column * along, row * across, 0));
+    for (int column = 0; column < columns; ++column)
+      points.push_back(origin + Eigen::Vector3d(column * along, row * across, 0));
   }
   return points;
 }
