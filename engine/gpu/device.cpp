@@ -1,0 +1,170 @@
+// Device selection and creation.
+//
+//   1. Every physical device is checked for Vulkan 1.3, a queue family with graphics and
+//      compute, and the features the renderer needs; what a device lacks is remembered.
+//   2. Of the suitable ones, the forced choice (DeviceChoice, PLUMB_GPU) or the best type:
+//      discrete, integrated, virtual, CPU.
+//   3. The logical device enables exactly the needed features, with one queue.
+
+#include "engine/gpu/device.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <optional>
+#include <vector>
+
+#include "engine/gpu/instance.h"
+#include "engine/gpu/vk_check.h"
+
+namespace plumb::gpu {
+namespace {
+
+int typeRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 3;
+    default:
+      return 4;
+  }
+}
+
+struct Candidate {
+  VkPhysicalDevice device = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties{};
+  std::uint32_t queue_family = 0;
+};
+
+// Why `device` cannot serve (empty when it can); fills the queue family.
+std::string unsuitable(VkPhysicalDevice device, Candidate& candidate) {
+  vkGetPhysicalDeviceProperties(device, &candidate.properties);
+  if (candidate.properties.apiVersion < VK_API_VERSION_1_3) return "Vulkan 1.3";
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  std::optional<std::uint32_t> family;
+  for (std::uint32_t i = 0; i < count && !family; ++i) {
+    const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if ((families[i].queueFlags & wanted) == wanted) family = i;
+  }
+  if (!family) return "a graphics and compute queue";
+  candidate.queue_family = *family;
+
+  VkPhysicalDeviceVulkan13Features v13{};
+  v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+  VkPhysicalDeviceVulkan12Features v12{};
+  v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+  v12.pNext = &v13;
+  VkPhysicalDeviceFeatures2 features{};
+  features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+  features.pNext = &v12;
+  vkGetPhysicalDeviceFeatures2(device, &features);
+  std::string missing;
+  auto need = [&](VkBool32 present, const char* name) {
+    if (!present) missing += (missing.empty() ? "" : ", ") + std::string(name);
+  };
+  need(features.features.shaderInt64, "shaderInt64");
+  need(v12.shaderBufferInt64Atomics, "shaderBufferInt64Atomics");
+  need(v12.bufferDeviceAddress, "bufferDeviceAddress");
+  need(v12.timelineSemaphore, "timelineSemaphore");
+  need(v13.synchronization2, "synchronization2");
+  need(v13.maintenance4, "maintenance4");  // glslc's SPIR-V for Vulkan 1.3 sets workgroup sizes by id
+  return missing;
+}
+
+bool matches(const DeviceChoice& choice, const VkPhysicalDeviceProperties& properties) {
+  if (choice.prefer.empty()) return true;
+  if (choice.prefer == "discrete") return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+  if (choice.prefer == "cpu") return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  return std::string(properties.deviceName).find(choice.prefer) != std::string::npos;
+}
+
+}  // namespace
+
+DeviceChoice deviceChoiceFromEnvironment() {
+  const char* value = std::getenv("PLUMB_GPU");
+  return {value ? value : ""};
+}
+
+Device::Device(const Instance& instance, const DeviceChoice& choice) {
+  std::uint32_t count = 0;
+  check(vkEnumeratePhysicalDevices(instance.handle(), &count, nullptr), "vkEnumeratePhysicalDevices");
+  std::vector<VkPhysicalDevice> devices(count);
+  check(vkEnumeratePhysicalDevices(instance.handle(), &count, devices.data()), "vkEnumeratePhysicalDevices",
+        VK_INCOMPLETE);
+
+  std::optional<Candidate> best;
+  std::string rejected;
+  for (VkPhysicalDevice device : devices) {
+    Candidate candidate;
+    candidate.device = device;
+    const std::string lacks = unsuitable(device, candidate);
+    const std::string name = candidate.properties.deviceName;
+    if (!lacks.empty()) {
+      rejected += "; " + name + " lacks " + lacks;
+    } else if (!matches(choice, candidate.properties)) {
+      rejected += "; " + name + " is not '" + choice.prefer + "'";
+    } else if (!best || typeRank(candidate.properties.deviceType) < typeRank(best->properties.deviceType)) {
+      best = candidate;
+    }
+  }
+  if (!best) {
+    throw Error("no Vulkan device can run Plumb" + (devices.empty() ? std::string(": none found") : rejected) +
+                " (install 'mesa-vulkan-drivers' for lavapipe on the CPU; PLUMB_GPU chooses a device)");
+  }
+  physical_ = best->device;
+  properties_ = best->properties;
+  queue_family_ = best->queue_family;
+  vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+
+  VkPhysicalDeviceVulkan13Features v13{};
+  v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+  v13.synchronization2 = VK_TRUE;
+  v13.maintenance4 = VK_TRUE;
+  VkPhysicalDeviceVulkan12Features v12{};
+  v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+  v12.pNext = &v13;
+  v12.shaderBufferInt64Atomics = VK_TRUE;
+  v12.bufferDeviceAddress = VK_TRUE;
+  v12.timelineSemaphore = VK_TRUE;
+  VkPhysicalDeviceFeatures2 features{};
+  features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+  features.pNext = &v12;
+  features.features.shaderInt64 = VK_TRUE;
+
+  const float priority = 1.0f;
+  VkDeviceQueueCreateInfo queue{};
+  queue.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+  queue.queueFamilyIndex = queue_family_;
+  queue.queueCount = 1;
+  queue.pQueuePriorities = &priority;
+  VkDeviceCreateInfo create{};
+  create.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+  create.pNext = &features;
+  create.queueCreateInfoCount = 1;
+  create.pQueueCreateInfos = &queue;
+  check(vkCreateDevice(physical_, &create, nullptr, &device_), "vkCreateDevice");
+  vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+}
+
+Device::~Device() {
+  if (device_ != VK_NULL_HANDLE) {
+    vkDeviceWaitIdle(device_);  // nothing may be in flight when the device goes
+    vkDestroyDevice(device_, nullptr);
+  }
+}
+
+std::uint32_t Device::memoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required) const {
+  for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
+    if ((type_bits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & required) == required) return i;
+  }
+  throw Error("the Vulkan device " + name() + " has no memory type with the properties needed");
+}
+
+}  // namespace plumb::gpu

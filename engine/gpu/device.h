@@ -1,0 +1,56 @@
+#pragma once
+// The physical device Plumb runs on and its logical device with one queue for graphics and
+// compute. A discrete GPU is preferred, then an integrated or virtual one, then the CPU
+// (Mesa's lavapipe); `DeviceChoice` or the environment variable PLUMB_GPU forces one:
+// "discrete", "cpu", or a part of the device's name ("llvmpipe", "RTX").
+//
+// The renderer needs, and the device enables: 64-bit integers and 64-bit buffer atomics (the
+// splat's atomicMin of depth << 32 | point id), buffer device address, timeline semaphores
+// (frame pacing), synchronization2 and maintenance4 (which the SPIR-V of shaders/ needs). A device without them is
+// passed over, and if none is left the error lists what each lacked.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+
+namespace plumb::gpu {
+
+class Instance;
+
+struct DeviceChoice {
+  // Empty: automatic (discrete first). "discrete", "cpu", or a part of the device name.
+  std::string prefer;
+};
+
+// The choice PLUMB_GPU asks for (automatic when unset).
+DeviceChoice deviceChoiceFromEnvironment();
+
+class Device {
+ public:
+  Device(const Instance& instance, const DeviceChoice& choice);
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  VkPhysicalDevice physical() const { return physical_; }
+  VkDevice handle() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  std::uint32_t queueFamily() const { return queue_family_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  std::string name() const { return properties_.deviceName; }
+  bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+
+  // A memory type index with all of `required` among the bits of `type_bits`; throws if none.
+  std::uint32_t memoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
+
+ private:
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  std::uint32_t queue_family_ = 0;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+};
+
+}  // namespace plumb::gpu
