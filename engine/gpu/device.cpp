@@ -34,6 +34,35 @@ int typeRank(VkPhysicalDeviceType type) {
   }
 }
 
+// The feature structures that hold what the renderer needs, linked as Vulkan expects: queried
+// to judge a device, then filled to enable exactly those features.
+struct FeatureChain {
+  VkPhysicalDeviceVulkan13Features v13{};
+  VkPhysicalDeviceVulkan12Features v12{};
+  VkPhysicalDeviceFeatures2 base{};
+
+  FeatureChain() {
+    v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+    v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+    v12.pNext = &v13;
+    base.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    base.pNext = &v12;
+  }
+  FeatureChain(const FeatureChain&) = delete;  // the chain points into itself
+  FeatureChain& operator=(const FeatureChain&) = delete;
+
+  // Calls visit(flag, name) for each feature the renderer needs.
+  template <typename Visit>
+  void forEachNeeded(Visit&& visit) {
+    visit(base.features.shaderInt64, "shaderInt64");
+    visit(v12.shaderBufferInt64Atomics, "shaderBufferInt64Atomics");
+    visit(v12.bufferDeviceAddress, "bufferDeviceAddress");
+    visit(v12.timelineSemaphore, "timelineSemaphore");
+    visit(v13.synchronization2, "synchronization2");
+    visit(v13.maintenance4, "maintenance4");  // glslc's SPIR-V for Vulkan 1.3 sets workgroup sizes by id
+  }
+};
+
 struct Candidate {
   VkPhysicalDevice device = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
@@ -56,25 +85,12 @@ std::string unsuitable(VkPhysicalDevice device, Candidate& candidate) {
   if (!family) return "a graphics and compute queue";
   candidate.queue_family = *family;
 
-  VkPhysicalDeviceVulkan13Features v13{};
-  v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
-  VkPhysicalDeviceVulkan12Features v12{};
-  v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
-  v12.pNext = &v13;
-  VkPhysicalDeviceFeatures2 features{};
-  features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
-  features.pNext = &v12;
-  vkGetPhysicalDeviceFeatures2(device, &features);
+  FeatureChain available;
+  vkGetPhysicalDeviceFeatures2(device, &available.base);
   std::string missing;
-  auto need = [&](VkBool32 present, const char* name) {
+  available.forEachNeeded([&](const VkBool32& present, const char* name) {
     if (!present) missing += (missing.empty() ? "" : ", ") + std::string(name);
-  };
-  need(features.features.shaderInt64, "shaderInt64");
-  need(v12.shaderBufferInt64Atomics, "shaderBufferInt64Atomics");
-  need(v12.bufferDeviceAddress, "bufferDeviceAddress");
-  need(v12.timelineSemaphore, "timelineSemaphore");
-  need(v13.synchronization2, "synchronization2");
-  need(v13.maintenance4, "maintenance4");  // glslc's SPIR-V for Vulkan 1.3 sets workgroup sizes by id
+  });
   return missing;
 }
 
@@ -123,20 +139,8 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
   queue_family_ = best->queue_family;
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 
-  VkPhysicalDeviceVulkan13Features v13{};
-  v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
-  v13.synchronization2 = VK_TRUE;
-  v13.maintenance4 = VK_TRUE;
-  VkPhysicalDeviceVulkan12Features v12{};
-  v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
-  v12.pNext = &v13;
-  v12.shaderBufferInt64Atomics = VK_TRUE;
-  v12.bufferDeviceAddress = VK_TRUE;
-  v12.timelineSemaphore = VK_TRUE;
-  VkPhysicalDeviceFeatures2 features{};
-  features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
-  features.pNext = &v12;
-  features.features.shaderInt64 = VK_TRUE;
+  FeatureChain enabled;
+  enabled.forEachNeeded([](VkBool32& flag, const char*) { flag = VK_TRUE; });
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queue{};
@@ -146,7 +150,7 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
   queue.pQueuePriorities = &priority;
   VkDeviceCreateInfo create{};
   create.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-  create.pNext = &features;
+  create.pNext = &enabled.base;
   create.queueCreateInfoCount = 1;
   create.pQueueCreateInfos = &queue;
   check(vkCreateDevice(physical_, &create, nullptr, &device_), "vkCreateDevice");
