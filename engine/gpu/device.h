@@ -43,6 +43,7 @@ class Device {
 
   // A memory type index with all of `required` among the bits of `type_bits`; throws if none.
   std::uint32_t memoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
+  VkMemoryPropertyFlags memoryTypeFlags(std::uint32_t type) const { return memory_.memoryTypes[type].propertyFlags; }
 
  private:
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
