@@ -16,7 +16,7 @@
 
 #include "engine/gpu/instance.h"
 #include "engine/gpu/vk_check.h"
-#include "tests/support/vulkan_driver.h"
+#include "tests/support/gpu_test.h"
 
 namespace plumb::gpu {
 namespace {
@@ -37,12 +37,6 @@ class Defer {
   std::function<void()> destroy_;
 };
 
-DeviceChoice testChoice() {
-  DeviceChoice choice = deviceChoiceFromEnvironment();
-  if (choice.prefer.empty()) choice.prefer = "cpu";  // tests run on lavapipe unless told otherwise
-  return choice;
-}
-
 class GpuTest : public ::testing::Test {
  protected:
   void SetUp() override { test::keepVulkanDriverLoaded(); }
@@ -55,7 +49,7 @@ TEST_F(GpuTest, DeviceWithTheRenderersFeaturesUnderValidation) {
   const Instance instance({.validation = true});
   ASSERT_TRUE(instance.validating());
   {
-    const Device device(instance, testChoice());
+    const Device device(instance, test::testDeviceChoice());
     std::printf("device: %s (Vulkan %u.%u)\n", device.name().c_str(),
                 VK_API_VERSION_MAJOR(device.properties().apiVersion),
                 VK_API_VERSION_MINOR(device.properties().apiVersion));
@@ -78,7 +72,7 @@ TEST_F(GpuTest, ANameNoDeviceHasIsAClearError) {
 TEST_F(GpuTest, TheValidationLayerIsHeard) {
   const Instance instance({.validation = true});
   {
-    const Device device(instance, testChoice());
+    const Device device(instance, test::testDeviceChoice());
     // A buffer without usage flags breaks a valid-usage rule the layer checks.
     VkBufferCreateInfo create{};
     create.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
@@ -114,16 +108,12 @@ TEST_F(GpuTest, SixtyFourBitAtomicMinKeepsTheNearestSampleOfEachPixel) {
 
   const Instance instance({.validation = true});
   {
-    const Device device(instance, testChoice());
+    const Device device(instance, test::testDeviceChoice());
     const VkDevice d = device.handle();
     // Host-visible storage buffers: enough for a check of the atomics; the renderer streams
     // through device-local memory.
     auto makeBuffer = [&](VkDeviceSize size, VkBuffer& buffer, VkDeviceMemory& memory) {
-      VkBufferCreateInfo create{};
-      create.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-      create.size = size;
-      create.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-      check(vkCreateBuffer(d, &create, nullptr, &buffer), "vkCreateBuffer");
+      buffer = test::createBuffer(device, size);
       VkMemoryRequirements requirements;
       vkGetBufferMemoryRequirements(d, buffer, &requirements);
       VkMemoryAllocateInfo allocate{};

@@ -13,18 +13,12 @@
 #include "engine/gpu/device.h"
 #include "engine/gpu/instance.h"
 #include "engine/gpu/vk_check.h"
-#include "tests/support/vulkan_driver.h"
+#include "tests/support/gpu_test.h"
 
 namespace plumb::gpu {
 namespace {
 
 constexpr VkMemoryPropertyFlags kHost = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-
-DeviceChoice testChoice() {
-  DeviceChoice choice = deviceChoiceFromEnvironment();
-  if (choice.prefer.empty()) choice.prefer = "cpu";
-  return choice;
-}
 
 class MemoryTest : public ::testing::Test {
  protected:
@@ -32,12 +26,7 @@ class MemoryTest : public ::testing::Test {
 
   // The memory types a storage buffer may live in, from a real buffer's requirements.
   static std::uint32_t storageTypeBits(const Device& device) {
-    VkBufferCreateInfo create{};
-    create.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-    create.size = 4096;
-    create.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    VkBuffer buffer = VK_NULL_HANDLE;
-    check(vkCreateBuffer(device.handle(), &create, nullptr, &buffer), "vkCreateBuffer");
+    const VkBuffer buffer = test::createBuffer(device, 4096);
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(device.handle(), buffer, &requirements);
     vkDestroyBuffer(device.handle(), buffer, nullptr);
@@ -71,7 +60,7 @@ class MemoryTest : public ::testing::Test {
 TEST_F(MemoryTest, RangesAreAlignedDisjointAndAllComeBack) {
   const Instance instance({.validation = true});
   {
-    const Device device(instance, testChoice());
+    const Device device(instance, test::testDeviceChoice());
     MemoryAllocator allocator(device, VkDeviceSize{1} << 20);
     const std::uint32_t type_bits = storageTypeBits(device);
     std::mt19937 random(7);
@@ -104,7 +93,7 @@ TEST_F(MemoryTest, RangesAreAlignedDisjointAndAllComeBack) {
 
 TEST_F(MemoryTest, ARequestLargerThanABlockGetsOneOfItsOwn) {
   const Instance instance;
-  const Device device(instance, testChoice());
+  const Device device(instance, test::testDeviceChoice());
   MemoryAllocator allocator(device, VkDeviceSize{1} << 20);
   const std::uint32_t type_bits = storageTypeBits(device);
   Allocation small = allocator.allocate({4096, 256, type_bits}, kHost);
@@ -123,24 +112,21 @@ TEST_F(MemoryTest, ARequestLargerThanABlockGetsOneOfItsOwn) {
 TEST_F(MemoryTest, BuffersBoundToTheirRangesPassValidationAndKeepTheirData) {
   const Instance instance({.validation = true});
   {
-    const Device device(instance, testChoice());
+    const Device device(instance, test::testDeviceChoice());
     MemoryAllocator allocator(device, VkDeviceSize{1} << 20);
     std::vector<VkBuffer> buffers;
     std::vector<Allocation> allocations;
     for (std::uint32_t i = 0; i < 100; ++i) {
-      VkBufferCreateInfo create{};
-      create.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-      create.size = 64 + 977 * i;
-      create.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-      VkBuffer buffer = VK_NULL_HANDLE;
-      check(vkCreateBuffer(device.handle(), &create, nullptr, &buffer), "vkCreateBuffer");
+      const VkDeviceSize size = 64 + 977 * i;
+      const VkBuffer buffer = test::createBuffer(
+          device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
       VkMemoryRequirements requirements;
       vkGetBufferMemoryRequirements(device.handle(), buffer, &requirements);
       Allocation allocation = allocator.allocate(requirements, kHost);
       check(vkBindBufferMemory(device.handle(), buffer, allocation.memory(), allocation.offset()),
             "vkBindBufferMemory");
       ASSERT_NE(allocation.mapped(), nullptr);
-      std::memset(allocation.mapped(), static_cast<int>(i), create.size);
+      std::memset(allocation.mapped(), static_cast<int>(i), size);
       buffers.push_back(buffer);
       allocations.push_back(std::move(allocation));
     }

@@ -1,0 +1,32 @@
+#pragma once
+// What the GPU tests share: the device they run on and a plain buffer to play with.
+
+#include <vulkan/vulkan.h>
+
+#include "engine/gpu/device.h"
+#include "engine/gpu/vk_check.h"
+#include "tests/support/vulkan_driver.h"
+
+namespace plumb::test {
+
+// PLUMB_GPU's choice, lavapipe when unset: the tests' results must not depend on what card the
+// machine happens to have.
+inline gpu::DeviceChoice testDeviceChoice() {
+  gpu::DeviceChoice choice = gpu::deviceChoiceFromEnvironment();
+  if (choice.prefer.empty()) choice.prefer = "cpu";
+  return choice;
+}
+
+// A buffer without memory; the caller destroys it.
+inline VkBuffer createBuffer(const gpu::Device& device, VkDeviceSize size,
+                             VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+  VkBufferCreateInfo create{};
+  create.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+  create.size = size;
+  create.usage = usage;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  gpu::check(vkCreateBuffer(device.handle(), &create, nullptr, &buffer), "vkCreateBuffer");
+  return buffer;
+}
+
+}  // namespace plumb::test
