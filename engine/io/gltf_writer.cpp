@@ -91,6 +91,15 @@ class SceneChecker {
   std::uint64_t bytes_ = 0;
 };
 
+tinygltf::Primitive primitive(int positions, int indices, int material, int mode) {
+  tinygltf::Primitive result;
+  result.attributes["POSITION"] = positions;
+  result.indices = indices;
+  result.material = material;
+  result.mode = mode;
+  return result;
+}
+
 // Step 3: the model under construction, with its single buffer.
 class ModelBuilder {
  public:
@@ -160,6 +169,23 @@ class ModelBuilder {
     return static_cast<int>(model_.materials.size() - 1);
   }
 
+  // A child of the root holding one primitive of `positions` (indexed by `triangles` where not
+  // null) in its own material. An element without geometry (no triangles, or no positions) is
+  // still a node, without a mesh, so that every element of the scene keeps its name.
+  void addElement(const std::string& name, const std::vector<Eigen::Vector3d>& positions,
+                  const std::vector<std::array<std::uint32_t, 3>>* triangles, const std::array<float, 4>& rgba,
+                  bool double_sided, int mode) {
+    if (triangles ? triangles->empty() : positions.empty()) {
+      addNode(name, nullptr);
+      return;
+    }
+    const int position_accessor = addPositions(positions);
+    const int index_accessor = triangles ? addIndices(*triangles) : -1;
+    const int material = addMaterial(name, rgba, double_sided);
+    const tinygltf::Primitive element = primitive(position_accessor, index_accessor, material, mode);
+    addNode(name, &element);
+  }
+
   // A child of the root; without a mesh when `primitive` is null.
   void addNode(const std::string& name, const tinygltf::Primitive* primitive) {
     tinygltf::Node node;
@@ -203,15 +229,6 @@ class ModelBuilder {
   tinygltf::Model model_;
   std::vector<unsigned char> data_;
 };
-
-tinygltf::Primitive primitive(int positions, int indices, int material, int mode) {
-  tinygltf::Primitive result;
-  result.attributes["POSITION"] = positions;
-  result.indices = indices;
-  result.material = material;
-  result.mode = mode;
-  return result;
-}
 
 }  // namespace
 
@@ -260,43 +277,20 @@ void writeGlb(const GltfScene& scene, const std::string& path) {
   ModelBuilder builder(checker.origin());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const GltfMesh& mesh = scene.meshes[m];
-    const std::string name = nodeName("mesh", m, mesh.name);
-    if (mesh.triangles.empty()) {
-      builder.addNode(name, nullptr);
-      continue;
-    }
-    const int positions = builder.addPositions(mesh.positions);
-    const int indices = builder.addIndices(mesh.triangles);
-    const int material = builder.addMaterial(name, mesh.colour_rgba, true);
-    const tinygltf::Primitive triangles = primitive(positions, indices, material, TINYGLTF_MODE_TRIANGLES);
-    builder.addNode(name, &triangles);
+    builder.addElement(nodeName("mesh", m, mesh.name), mesh.positions, &mesh.triangles, mesh.colour_rgba, true,
+                       TINYGLTF_MODE_TRIANGLES);
   }
   for (std::size_t l = 0; l < scene.lines.size(); ++l) {
     const GltfLines& lines = scene.lines[l];
-    const std::string name = nodeName("lines", l, lines.name);
-    if (lines.segments.empty()) {
-      builder.addNode(name, nullptr);
-      continue;
-    }
     std::vector<Eigen::Vector3d> ends;
     ends.reserve(lines.segments.size() * 2);
     for (const auto& segment : lines.segments) ends.insert(ends.end(), segment.begin(), segment.end());
-    const int positions = builder.addPositions(ends);
-    const int material = builder.addMaterial(name, lines.colour_rgba, false);
-    const tinygltf::Primitive segments = primitive(positions, -1, material, TINYGLTF_MODE_LINE);
-    builder.addNode(name, &segments);
+    builder.addElement(nodeName("lines", l, lines.name), ends, nullptr, lines.colour_rgba, false, TINYGLTF_MODE_LINE);
   }
   for (std::size_t p = 0; p < scene.points.size(); ++p) {
     const GltfPoints& points = scene.points[p];
-    const std::string name = nodeName("points", p, points.name);
-    if (points.positions.empty()) {
-      builder.addNode(name, nullptr);
-      continue;
-    }
-    const int positions = builder.addPositions(points.positions);
-    const int material = builder.addMaterial(name, points.colour_rgba, false);
-    const tinygltf::Primitive dots = primitive(positions, -1, material, TINYGLTF_MODE_POINTS);
-    builder.addNode(name, &dots);
+    builder.addElement(nodeName("points", p, points.name), points.positions, nullptr, points.colour_rgba, false,
+                       TINYGLTF_MODE_POINTS);
   }
 
   // Step 4. Serialise fully before the output file exists, so a tinygltf failure leaves nothing.

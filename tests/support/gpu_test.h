@@ -1,9 +1,14 @@
 #pragma once
-// What the GPU tests share: the device they run on and a plain buffer to play with.
+// What the GPU tests share: the device they run on, a plain buffer to play with, and the rule
+// that any validation message fails.
 
+#include <gtest/gtest.h>
 #include <vulkan/vulkan.h>
 
+#include <string>
+
 #include "engine/gpu/device.h"
+#include "engine/gpu/instance.h"
 #include "engine/gpu/vk_check.h"
 #include "tests/support/vulkan_driver.h"
 
@@ -27,6 +32,11 @@ inline VkBuffer createBuffer(const gpu::Device& device, VkDeviceSize size,
   VkBuffer buffer = VK_NULL_HANDLE;
   gpu::check(vkCreateBuffer(device.handle(), &create, nullptr, &buffer), "vkCreateBuffer");
   return buffer;
+}
+
+// Every validation message the instance recorded is a failure of the test.
+inline void expectNoValidationMessages(const gpu::Instance& instance) {
+  for (const std::string& message : instance.validationMessages()) ADD_FAILURE() << message;
 }
 
 }  // namespace plumb::test

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/gpu/instance.h"
+#include "engine/gpu/memory.h"
 #include "engine/gpu/vk_check.h"
 #include "tests/support/gpu_test.h"
 
@@ -40,9 +41,6 @@ class Defer {
 class GpuTest : public ::testing::Test {
  protected:
   void SetUp() override { test::keepVulkanDriverLoaded(); }
-  void expectNoValidationMessages(const Instance& instance) {
-    for (const std::string& message : instance.validationMessages()) ADD_FAILURE() << message;
-  }
 };
 
 TEST_F(GpuTest, DeviceWithTheRenderersFeaturesUnderValidation) {
@@ -56,7 +54,7 @@ TEST_F(GpuTest, DeviceWithTheRenderersFeaturesUnderValidation) {
     EXPECT_NE(device.queue(), VK_NULL_HANDLE);
     EXPECT_GE(device.properties().apiVersion, VK_API_VERSION_1_3);
   }
-  expectNoValidationMessages(instance);
+  test::expectNoValidationMessages(instance);
 }
 
 TEST_F(GpuTest, ANameNoDeviceHasIsAClearError) {
@@ -112,35 +110,26 @@ TEST_F(GpuTest, SixtyFourBitAtomicMinKeepsTheNearestSampleOfEachPixel) {
     const VkDevice d = device.handle();
     // Host-visible storage buffers: enough for a check of the atomics; the renderer streams
     // through device-local memory.
-    auto makeBuffer = [&](VkDeviceSize size, VkBuffer& buffer, VkDeviceMemory& memory) {
-      buffer = test::createBuffer(device, size);
-      VkMemoryRequirements requirements;
-      vkGetBufferMemoryRequirements(d, buffer, &requirements);
-      VkMemoryAllocateInfo allocate{};
-      allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-      allocate.allocationSize = requirements.size;
-      allocate.memoryTypeIndex = device.memoryType(
-          requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-      check(vkAllocateMemory(d, &allocate, nullptr, &memory), "vkAllocateMemory");
-      check(vkBindBufferMemory(d, buffer, memory, 0), "vkBindBufferMemory");
-    };
-    VkBuffer sample_buffer = VK_NULL_HANDLE, visibility_buffer = VK_NULL_HANDLE;
-    VkDeviceMemory sample_memory = VK_NULL_HANDLE, visibility_memory = VK_NULL_HANDLE;
+    MemoryAllocator allocator(device);
+    const VkBuffer sample_buffer = test::createBuffer(device, sizeof(Sample) * kSamples);
+    const VkBuffer visibility_buffer = test::createBuffer(device, sizeof(std::uint64_t) * kPixels);
     const Defer free_buffers([&] {
       vkDestroyBuffer(d, sample_buffer, nullptr);
-      vkFreeMemory(d, sample_memory, nullptr);
       vkDestroyBuffer(d, visibility_buffer, nullptr);
-      vkFreeMemory(d, visibility_memory, nullptr);
     });
-    makeBuffer(sizeof(Sample) * kSamples, sample_buffer, sample_memory);
-    makeBuffer(sizeof(std::uint64_t) * kPixels, visibility_buffer, visibility_memory);
-    void* mapped = nullptr;
-    check(vkMapMemory(d, sample_memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
-    std::memcpy(mapped, samples.data(), sizeof(Sample) * kSamples);
-    vkUnmapMemory(d, sample_memory);
-    check(vkMapMemory(d, visibility_memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
-    std::fill_n(static_cast<std::uint64_t*>(mapped), kPixels, std::numeric_limits<std::uint64_t>::max());
-    vkUnmapMemory(d, visibility_memory);
+    auto bindHostMemory = [&](VkBuffer buffer) {
+      VkMemoryRequirements requirements;
+      vkGetBufferMemoryRequirements(d, buffer, &requirements);
+      Allocation allocation =
+          allocator.allocate(requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+      check(vkBindBufferMemory(d, buffer, allocation.memory(), allocation.offset()), "vkBindBufferMemory");
+      return allocation;
+    };
+    const Allocation sample_memory = bindHostMemory(sample_buffer);
+    const Allocation visibility_memory = bindHostMemory(visibility_buffer);
+    std::memcpy(sample_memory.mapped(), samples.data(), sizeof(Sample) * kSamples);
+    std::fill_n(static_cast<std::uint64_t*>(visibility_memory.mapped()), kPixels,
+                std::numeric_limits<std::uint64_t>::max());
 
     std::array<VkDescriptorSetLayoutBinding, 2> bindings{};
     for (std::uint32_t b = 0; b < 2; ++b) {
@@ -257,14 +246,12 @@ TEST_F(GpuTest, SixtyFourBitAtomicMinKeepsTheNearestSampleOfEachPixel) {
     check(vkQueueSubmit(device.queue(), 1, &submit, fence), "vkQueueSubmit");
     check(vkWaitForFences(d, 1, &fence, VK_TRUE, 60'000'000'000ull), "vkWaitForFences");
 
-    check(vkMapMemory(d, visibility_memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
-    const auto* visibility = static_cast<const std::uint64_t*>(mapped);
+    const auto* visibility = static_cast<const std::uint64_t*>(visibility_memory.mapped());
     std::uint32_t wrong = 0;
     for (std::uint32_t p = 0; p < kPixels; ++p) wrong += visibility[p] == expected[p] ? 0u : 1u;
-    vkUnmapMemory(d, visibility_memory);
     EXPECT_EQ(wrong, 0u) << "of " << kPixels << " pixels";
   }
-  expectNoValidationMessages(instance);
+  test::expectNoValidationMessages(instance);
 }
 
 }  // namespace

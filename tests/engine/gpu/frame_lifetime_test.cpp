@@ -45,7 +45,7 @@ TEST(TimelineSemaphore, HostSignalsWaitsAndTimesOut) {
     EXPECT_TRUE(timeline.wait(5, 0));
     EXPECT_FALSE(timeline.wait(6, 1'000'000));  // 1 ms: nothing will signal it
   }
-  for (const std::string& message : instance.validationMessages()) ADD_FAILURE() << message;
+  test::expectNoValidationMessages(instance);
 }
 
 // A frame's buffer is deferred to the frame's timeline value: it survives while the GPU has not
@@ -82,7 +82,7 @@ TEST(TimelineSemaphore, AFramesBufferGoesOnlyAfterTheGpuSignalsItsFrame) {
     EXPECT_EQ(deletions.collect(timeline.value()), 1u);
     EXPECT_TRUE(destroyed);
   }
-  for (const std::string& message : instance.validationMessages()) ADD_FAILURE() << message;
+  test::expectNoValidationMessages(instance);
 }
 
 }  // namespace

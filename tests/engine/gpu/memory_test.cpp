@@ -88,7 +88,7 @@ TEST_F(MemoryTest, RangesAreAlignedDisjointAndAllComeBack) {
     EXPECT_EQ(allocator.bytesInUse(), 0u);
     EXPECT_EQ(allocator.blockCount(), 1u);  // one empty block is kept for the next request
   }
-  for (const std::string& message : instance.validationMessages()) ADD_FAILURE() << message;
+  test::expectNoValidationMessages(instance);
 }
 
 TEST_F(MemoryTest, ARequestLargerThanABlockGetsOneOfItsOwn) {
@@ -137,7 +137,7 @@ TEST_F(MemoryTest, BuffersBoundToTheirRangesPassValidationAndKeepTheirData) {
     }
     for (VkBuffer buffer : buffers) vkDestroyBuffer(device.handle(), buffer, nullptr);
   }
-  for (const std::string& message : instance.validationMessages()) ADD_FAILURE() << message;
+  test::expectNoValidationMessages(instance);
 }
 
 }  // namespace

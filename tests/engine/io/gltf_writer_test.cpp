@@ -26,13 +26,18 @@ tinygltf::Model load(const std::string& path) {
 }
 
 // The world coordinates of a POSITION accessor: the root's translation plus each stored float.
+// The first byte of an accessor's data in the model's buffer.
+const unsigned char* accessorData(const tinygltf::Model& model, const tinygltf::Accessor& accessor) {
+  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
+  const tinygltf::Buffer& buffer = model.buffers.at(static_cast<std::size_t>(view.buffer));
+  return buffer.data.data() + view.byteOffset + accessor.byteOffset;
+}
+
 std::vector<Eigen::Vector3d> worldPositions(const tinygltf::Model& model, int accessor_index) {
   const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(accessor_index));
   EXPECT_EQ(accessor.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
   EXPECT_EQ(accessor.type, TINYGLTF_TYPE_VEC3);
-  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
-  const tinygltf::Buffer& buffer = model.buffers.at(static_cast<std::size_t>(view.buffer));
-  const unsigned char* data = buffer.data.data() + view.byteOffset + accessor.byteOffset;
+  const unsigned char* data = accessorData(model, accessor);
   const std::vector<double>& t = model.nodes.at(0).translation;
   std::vector<Eigen::Vector3d> result;
   for (std::size_t i = 0; i < accessor.count; ++i) {
@@ -52,10 +57,8 @@ std::vector<std::uint32_t> indices(const tinygltf::Model& model, int accessor_in
   const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(accessor_index));
   EXPECT_EQ(accessor.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
   EXPECT_EQ(accessor.type, TINYGLTF_TYPE_SCALAR);
-  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
-  const tinygltf::Buffer& buffer = model.buffers.at(static_cast<std::size_t>(view.buffer));
   std::vector<std::uint32_t> result(accessor.count);
-  std::memcpy(result.data(), buffer.data.data() + view.byteOffset + accessor.byteOffset, accessor.count * 4);
+  std::memcpy(result.data(), accessorData(model, accessor), accessor.count * 4);
   return result;
 }
 
