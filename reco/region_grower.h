@@ -40,7 +40,7 @@ struct GrowOptions {
   // The inlier test (section 3.5) with the scanner's noise in mind: a point joins within
   // min(t_p, noise_sigmas x the plane's RMS), never below min_threshold_fraction x t_p.
   // noise_sigmas = 0 gives the paper's plain t_p.
-  double noise_sigmas = 2.5;
+  double noise_sigmas = 2.25;
   double min_threshold_fraction = 0.1;
   // After convergence, move each point to the nearest plane among the segments around it and
   // refit (the growth gives a point to whichever segment reaches it first).

@@ -18,9 +18,9 @@ int main(int argc, char** argv) {
   plumb.require_subcommand(1);
   plumb.footer("Run 'plumb <command> --help' for the options of a command.");
 
-  const std::vector<plumb::cli::Command> commands{plumb::cli::addGrowCommand(plumb), plumb::cli::addImportCommand(plumb),
-                                                 plumb::cli::addInfoCommand(plumb),
-                                                 plumb::cli::addSimulateCommand(plumb)};
+  const std::vector<plumb::cli::Command> commands{
+      plumb::cli::addGrowCommand(plumb), plumb::cli::addImportCommand(plumb), plumb::cli::addInfoCommand(plumb),
+      plumb::cli::addRenderCommand(plumb), plumb::cli::addSimulateCommand(plumb)};
 
   // CLI11 reports a mistyped command only as "A subcommand is required"; name it instead.
   std::string known;

@@ -155,6 +155,20 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
   create.pQueueCreateInfos = &queue;
   check(vkCreateDevice(physical_, &create, nullptr, &device_), "vkCreateDevice");
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+  if (instance.validating()) {
+    set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(instance.handle(), "vkSetDebugUtilsObjectNameEXT"));
+  }
+}
+
+void Device::setName(VkObjectType type, std::uint64_t handle, const char* name) const {
+  if (set_object_name_ == nullptr || handle == 0) return;
+  VkDebugUtilsObjectNameInfoEXT info{};
+  info.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT;
+  info.objectType = type;
+  info.objectHandle = handle;
+  info.pObjectName = name;
+  check(set_object_name_(device_, &info), "vkSetDebugUtilsObjectNameEXT");
 }
 
 Device::~Device() {

@@ -45,6 +45,14 @@ class Device {
   std::uint32_t memoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
   VkMemoryPropertyFlags memoryTypeFlags(std::uint32_t type) const { return memory_.memoryTypes[type].propertyFlags; }
 
+  // Names `handle` for the validation layer's messages and debuggers; does nothing unless the
+  // instance validates (VK_EXT_debug_utils is on only then).
+  void setName(VkObjectType type, std::uint64_t handle, const char* name) const;
+  template <typename Handle>
+  void setName(VkObjectType type, Handle handle, const char* name) const {
+    setName(type, reinterpret_cast<std::uint64_t>(handle), name);
+  }
+
  private:
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
@@ -52,6 +60,7 @@ class Device {
   std::uint32_t queue_family_ = 0;
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
+  PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
 };
 
 }  // namespace plumb::gpu

@@ -7,7 +7,10 @@
 
 #include "engine/gpu/instance.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #include "engine/gpu/vk_check.h"
@@ -26,9 +29,30 @@ bool layerAvailable(const char* name) {
                      [&](const VkLayerProperties& layer) { return std::strcmp(layer.layerName, name) == 0; });
 }
 
+// Keeps Mesa's lavapipe mapped until the process ends. Lavapipe allocates a small block in a
+// one-time initialisation and keeps it in a global; when the Vulkan loader unloads the driver at
+// vkDestroyInstance, LeakSanitizer finds the block unreferenced in an unknown module and fails
+// the run, although nothing leaks per instance. With the library kept (RTLD_NODELETE) the global
+// still points at the block. Harmless elsewhere: a machine without lavapipe loads nothing.
+void keepCpuDriverLoaded() {
+  static void* const kept = dlopen("libvulkan_lvp.so", RTLD_NOW | RTLD_NODELETE);
+  (void)kept;
+}
+
 }  // namespace
 
+InstanceOptions instanceOptionsFromEnvironment() {
+  const char* forced = std::getenv("PLUMB_VALIDATION");
+  if (forced != nullptr && *forced != '\0') return {.validation = std::strcmp(forced, "0") != 0};
+#ifdef NDEBUG
+  return {.validation = false};
+#else
+  return {.validation = layerAvailable(kValidationLayer)};
+#endif
+}
+
 Instance::Instance(const InstanceOptions& options) {
+  keepCpuDriverLoaded();
   VkApplicationInfo application{};
   application.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
   application.pApplicationName = "Plumb";

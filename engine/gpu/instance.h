@@ -14,6 +14,10 @@ struct InstanceOptions {
   bool validation = false;  // the layer must be installed (vulkan-validationlayers)
 };
 
+// What the commands and the app use: validation in debug builds where the layer is installed;
+// the environment variable PLUMB_VALIDATION=1 or 0 forces it on or off.
+InstanceOptions instanceOptionsFromEnvironment();
+
 class Instance {
  public:
   explicit Instance(const InstanceOptions& options = {});

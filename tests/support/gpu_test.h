@@ -10,7 +10,6 @@
 #include "engine/gpu/device.h"
 #include "engine/gpu/instance.h"
 #include "engine/gpu/vk_check.h"
-#include "tests/support/vulkan_driver.h"
 
 namespace plumb::test {
 

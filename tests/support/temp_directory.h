@@ -14,18 +14,15 @@ namespace plumb::test {
 
 class TempDirectory {
  public:
+  // Named after the running test.
   TempDirectory() {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name =
-        std::string("plumb_") + test->test_suite_name() + "_" + test->name() + "_" + std::to_string(::getpid());
-    for (char& c : name) {
-      if (c == '/') c = '_';
-    }
-    path_ = std::filesystem::temp_directory_path() / name;
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
+    create(std::string("plumb_") + test->test_suite_name() + "_" + test->name());
   }
+  // Named `prefix`, for what a whole test suite shares (SetUpTestSuite runs outside any test).
+  explicit TempDirectory(const std::string& prefix) { create(prefix); }
   ~TempDirectory() { std::filesystem::remove_all(path_); }
+
   TempDirectory(const TempDirectory&) = delete;
   TempDirectory& operator=(const TempDirectory&) = delete;
 
@@ -45,6 +42,16 @@ class TempDirectory {
   }
 
  private:
+  void create(std::string name) {
+    name += "_" + std::to_string(::getpid());
+    for (char& c : name) {
+      if (c == '/') c = '_';
+    }
+    path_ = std::filesystem::temp_directory_path() / name;
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+
   std::filesystem::path path_;
 };
 

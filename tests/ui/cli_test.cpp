@@ -10,6 +10,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "engine/io/png_image.h"
 #include "tests/support/temp_directory.h"
 
 namespace {
@@ -225,6 +226,40 @@ TEST_F(Cli, OutputIntoAMissingFolderFailsCleanly) {
   EXPECT_NE(run.err.find("nowhere/room.ply"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("plumb simulate: error:"), std::string::npos) << run.err;
   EXPECT_EQ(entries(), 0u);
+}
+
+// Off screen, no window system: the room from above at the size asked for, nothing else left.
+TEST_F(Cli, RenderWritesTheViewAsAPng) {
+  ASSERT_EQ(plumb("simulate --points 100000 --noise-mm 2 -o " + path("room.ply")).exit_code, 0);
+  const Outcome run =
+      plumb("render " + path("room.ply") + " --view top --size 320x200 --edl off -o " + path("top.png"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("wrote " + path("top.png")), std::string::npos) << run.out;
+  const plumb::io::RgbaImage image = plumb::io::readPng(path("top.png"));
+  ASSERT_EQ(image.width, 320);
+  ASSERT_EQ(image.height, 200);
+  // The room's 7 x 5 m fill the 320 x 200 view, less the margin; the ceiling's scan lines cover
+  // about half of its pixels (100,000 points are few).
+  std::size_t lit = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) lit += image.pixel(x, y) != image.pixel(0, 0);
+  }
+  EXPECT_GT(lit, std::size_t{320 * 200 * 4 / 10});
+  EXPECT_EQ(entries(), 2u) << "room.ply and top.png only: the temporary octree is gone";
+}
+
+TEST_F(Cli, RenderRejectsBadArgumentsAndWritesNothing) {
+  ASSERT_EQ(plumb("simulate --points 20000 -o " + path("room.ply")).exit_code, 0);
+  const Outcome size = plumb("render " + path("room.ply") + " --size 320by200 -o " + path("shot.png"));
+  EXPECT_NE(size.exit_code, 0);
+  EXPECT_NE(size.err.find("--size 320by200"), std::string::npos) << size.err;
+  const Outcome view = plumb("render " + path("room.ply") + " --view aerial -o " + path("shot.png"));
+  EXPECT_NE(view.exit_code, 0);
+  EXPECT_NE(view.err.find("aerial"), std::string::npos) << view.err;
+  const Outcome missing = plumb("render " + path("nothing.ply") + " -o " + path("shot.png"));
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find(path("nothing.ply")), std::string::npos) << missing.err;
+  EXPECT_EQ(entries(), 1u) << "room.ply only";
 }
 
 }  // namespace

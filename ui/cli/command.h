@@ -21,5 +21,6 @@ Command addSimulateCommand(CLI::App& plumb);
 Command addGrowCommand(CLI::App& plumb);
 Command addImportCommand(CLI::App& plumb);
 Command addInfoCommand(CLI::App& plumb);
+Command addRenderCommand(CLI::App& plumb);
 
 }  // namespace plumb::cli

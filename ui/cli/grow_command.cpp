@@ -1,27 +1,22 @@
 // plumb grow: the planes around a point, as a click in the viewer would find them.
 
-#include <unistd.h>
-
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include "engine/core/error.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
-#include "engine/lod/octree_builder.h"
 #include "engine/view/camera_json.h"
 #include "reco/region_grower.h"
 #include "ui/cli/arguments.h"
+#include "ui/cli/cloud_input.h"
 #include "ui/cli/command.h"
 #include "ui/cli/grow_output.h"
-#include "ui/cli/progress_line.h"
 
 namespace plumb::cli {
 namespace {
@@ -35,21 +30,6 @@ struct GrowOptions {
   double plane_threshold = 0.02;
   std::string json;
   std::string gltf;
-};
-
-bool isOctree(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[8] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == 8 && std::string_view(magic, 8) == "PLUMBOCT";
-}
-
-// A point file becomes a temporary octree, removed when the command ends.
-struct TemporaryOctree {
-  std::string path;
-  ~TemporaryOctree() {
-    if (!path.empty()) std::filesystem::remove(path);
-  }
 };
 
 }  // namespace
@@ -96,24 +76,8 @@ Command addGrowCommand(CLI::App& plumb) {
         throw Error(options->camera + ": the seed " + options->seed + " is behind the camera");
       }
     }
-    TemporaryOctree temporary;
-    std::string octree_path = options->cloud;
-    if (!isOctree(octree_path)) {
-      temporary.path =
-          (std::filesystem::temp_directory_path() / ("plumb-grow-" + std::to_string(::getpid()) + ".plumb")).string();
-      lod::BuildOptions build;
-      build.sources = lod::fileSources({options->cloud});
-      build.output = temporary.path;
-      ProgressLine progress("grow: importing");
-      build.progress = [&](std::string_view phase, std::uint64_t done, std::uint64_t total) {
-        progress.update(phase, done, total);
-      };
-      const lod::BuildReport report = lod::buildOctree(build);
-      progress.finish();
-      std::printf("imported %s points from %s\n", withThousands(report.points).c_str(), options->cloud.c_str());
-      octree_path = temporary.path;
-    }
-    const auto octree = lod::Octree::open(octree_path);
+    const CloudInput cloud(options->cloud, "grow");
+    const std::shared_ptr<const lod::Octree>& octree = cloud.octree();
     lod::NodeCache cache(octree, std::size_t{1} << 30);
 
     reco::ParameterConstants constants;

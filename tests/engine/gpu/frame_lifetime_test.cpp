@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/gpu/commands.h"
 #include "engine/gpu/deletion_queue.h"
 #include "engine/gpu/device.h"
 #include "engine/gpu/instance.h"
@@ -34,7 +35,6 @@ TEST(DeletionQueue, RunsWhatTheCompletedValueReachesInTheOrderDeferred) {
 }
 
 TEST(TimelineSemaphore, HostSignalsWaitsAndTimesOut) {
-  test::keepVulkanDriverLoaded();
   const Instance instance({.validation = true});
   {
     const Device device(instance, test::testDeviceChoice());
@@ -51,7 +51,6 @@ TEST(TimelineSemaphore, HostSignalsWaitsAndTimesOut) {
 // A frame's buffer is deferred to the frame's timeline value: it survives while the GPU has not
 // signalled that value, and goes once it has.
 TEST(TimelineSemaphore, AFramesBufferGoesOnlyAfterTheGpuSignalsItsFrame) {
-  test::keepVulkanDriverLoaded();
   const Instance instance({.validation = true});
   {
     const Device device(instance, test::testDeviceChoice());
@@ -67,17 +66,9 @@ TEST(TimelineSemaphore, AFramesBufferGoesOnlyAfterTheGpuSignalsItsFrame) {
     EXPECT_EQ(deletions.collect(timeline.value()), 0u);
     EXPECT_FALSE(destroyed);
 
-    // Frame 1's submission (empty here) signals the timeline through synchronization2.
-    VkSemaphoreSubmitInfo signal{};
-    signal.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-    signal.semaphore = timeline.handle();
-    signal.value = kFrame;
-    signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    VkSubmitInfo2 submit{};
-    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-    submit.signalSemaphoreInfoCount = 1;
-    submit.pSignalSemaphoreInfos = &signal;
-    check(vkQueueSubmit2(device.queue(), 1, &submit, VK_NULL_HANDLE), "vkQueueSubmit2");
+    // Frame 1's submission (an empty command buffer) signals the timeline.
+    CommandPool pool(device, "frame");
+    submit(device, pool.begin(), timeline, kFrame);
     ASSERT_TRUE(timeline.wait(kFrame, 10'000'000'000ull));
     EXPECT_EQ(deletions.collect(timeline.value()), 1u);
     EXPECT_TRUE(destroyed);

@@ -22,8 +22,6 @@ constexpr VkMemoryPropertyFlags kHost = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK
 
 class MemoryTest : public ::testing::Test {
  protected:
-  void SetUp() override { test::keepVulkanDriverLoaded(); }
-
   // The memory types a storage buffer may live in, from a real buffer's requirements.
   static std::uint32_t storageTypeBits(const Device& device) {
     const VkBuffer buffer = test::createBuffer(device, 4096);

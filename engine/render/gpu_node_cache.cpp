@@ -1,0 +1,70 @@
+#include "engine/render/gpu_node_cache.h"
+
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "engine/gpu/deletion_queue.h"
+#include "engine/gpu/upload_ring.h"
+#include "engine/lod/octree.h"
+
+namespace plumb::render {
+
+GpuNodeCache::GpuNodeCache(const gpu::Device& device, gpu::MemoryAllocator& allocator, std::uint64_t budget_bytes)
+    : device_(device), allocator_(allocator), budget_bytes_(budget_bytes) {}
+
+void GpuNodeCache::touch(Entry& entry, std::uint64_t frame) {
+  entry.node.last_frame = frame;
+  recency_.splice(recency_.begin(), recency_, entry.recency);
+}
+
+const GpuNode* GpuNodeCache::use(const lod::CellKey& key, std::uint64_t frame) {
+  const auto found = entries_.find(key);
+  if (found == entries_.end()) return nullptr;
+  touch(found->second, frame);
+  return &found->second.node;
+}
+
+const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, VkCommandBuffer commands, gpu::UploadRing& ring,
+                                    std::uint64_t frame) {
+  if (points.points.empty()) return nullptr;  // the octree writes no empty nodes
+  const VkDeviceSize bytes = points.points.size() * sizeof(lod::PackedPoint);
+  const std::optional<gpu::UploadSpan> span = ring.allocate(bytes);
+  if (!span) return nullptr;
+  std::memcpy(span->data, points.points.data(), bytes);
+
+  const std::string name = "node " + std::to_string(points.key.level) + "/" + std::to_string(points.key.x) + "/" +
+                           std::to_string(points.key.y) + "/" + std::to_string(points.key.z);
+  GpuNode node;
+  node.points =
+      gpu::Buffer(device_, allocator_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                  gpu::kDeviceMemory, name.c_str());
+  node.point_count = static_cast<std::uint32_t>(points.points.size());
+  const VkBufferCopy copy{span->offset, 0, bytes};
+  vkCmdCopyBuffer(commands, ring.buffer(), node.points.handle(), 1, &copy);
+
+  recency_.push_front(points.key);
+  Entry& entry = entries_.insert_or_assign(points.key, Entry{std::move(node), recency_.begin()}).first->second;
+  entry.node.last_frame = frame;
+  stats_.bytes += bytes;
+  ++stats_.nodes;
+  ++stats_.uploads;
+  return &entry.node;
+}
+
+void GpuNodeCache::evict(std::uint64_t frame, gpu::DeletionQueue& deletions) {
+  while (stats_.bytes > budget_bytes_ && !recency_.empty()) {
+    const lod::CellKey key = recency_.back();
+    const auto found = entries_.find(key);
+    if (found->second.node.last_frame >= frame) break;  // everything left is drawn by this frame
+    stats_.bytes -= found->second.node.points.size();
+    --stats_.nodes;
+    ++stats_.evictions;
+    auto buffer = std::make_shared<gpu::Buffer>(std::move(found->second.node.points));
+    deletions.defer(frame, [buffer]() mutable { buffer.reset(); });
+    entries_.erase(found);
+    recency_.pop_back();
+  }
+}
+
+}  // namespace plumb::render

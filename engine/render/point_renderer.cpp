@@ -1,0 +1,418 @@
+// One frame of the point renderer:
+//   1. Pace: wait until the frame that last used this frame slot is done; run the deletions
+//      and free the upload ring space of every finished frame.
+//   2. Select nodes (node_selection.cpp); upload those not on the GPU that are loaded (or, with
+//      NodeLoading::kWait, load them), as far as the upload ring has room.
+//   3. Write the chunk table: per chunk of each drawn node its clip and depth transforms
+//      (splat_transform.h).
+//   4. Record: clear the visibility buffer, splat, resolve; submit to signal the frame's value.
+//   5. Evict resident nodes beyond the GPU budget.
+
+#include "engine/render/point_renderer.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <span>
+#include <string>
+
+#include "engine/core/error.h"
+#include "engine/gpu/buffer.h"
+#include "engine/gpu/commands.h"
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/gpu/deletion_queue.h"
+#include "engine/gpu/device.h"
+#include "engine/gpu/memory.h"
+#include "engine/gpu/timeline.h"
+#include "engine/gpu/upload_ring.h"
+#include "engine/gpu/vk_check.h"
+#include "engine/lod/node_cache.h"
+#include "engine/render/gpu_node_cache.h"
+#include "engine/render/render_target.h"
+#include "engine/render/splat_transform.h"
+#include "engine/view/camera.h"
+#include "shaders/render_layout.h"
+
+namespace plumb::render {
+namespace {
+
+constexpr std::uint32_t kSplatCode[] =
+#include "shaders/splat.comp.inc"
+    ;
+constexpr std::uint32_t kResolveCode[] =
+#include "shaders/resolve.comp.inc"
+    ;
+
+static_assert(sizeof(shader::SplatChunk) == 112, "SplatChunk differs from its std430 layout");
+static_assert(sizeof(shader::SplatPush) == 32, "SplatPush differs from its std430 layout");
+static_assert(sizeof(shader::ResolvePush) == 64, "ResolvePush differs from its std430 layout");
+static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
+
+constexpr std::uint64_t kNoTimeout = std::numeric_limits<std::uint64_t>::max();
+
+// Where the ids of a chunk came from, to map a picked id back to its point.
+struct ChunkOrigin {
+  std::uint32_t first_id;
+  lod::CellKey node;
+  std::uint32_t first_point;
+};
+
+std::uint32_t packRgba(const std::array<std::uint8_t, 4>& c) {
+  return std::uint32_t{c[0]} | std::uint32_t{c[1]} << 8 | std::uint32_t{c[2]} << 16 | std::uint32_t{c[3]} << 24;
+}
+
+}  // namespace
+
+struct PointRenderer::Resources {
+  Resources(const gpu::Device& d, gpu::MemoryAllocator& a, lod::NodeCache& n, const RendererOptions& o)
+      : device(d),
+        allocator(a),
+        nodes(n),
+        splat(d, kSplatCode, sizeof(shader::SplatPush), "splat"),
+        resolve(d, kResolveCode, sizeof(shader::ResolvePush), "resolve"),
+        timeline(d),
+        ring(d, a, o.upload_ring_bytes),
+        gpu_nodes(d, a, o.gpu_budget_bytes),
+        slots{Slot{gpu::CommandPool(d, "frame slot 0"), {}}, Slot{gpu::CommandPool(d, "frame slot 1"), {}}},
+        readback_pool(d, "readback") {
+    if (o.gpu_timing) {
+      VkQueryPoolCreateInfo create{};
+      create.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+      create.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      create.queryCount = kTimestamps * kFramesInFlight;
+      gpu::check(vkCreateQueryPool(d.handle(), &create, nullptr, &timestamps), "vkCreateQueryPool");
+    }
+  }
+  ~Resources() {
+    if (timestamps != VK_NULL_HANDLE) vkDestroyQueryPool(device.handle(), timestamps, nullptr);
+  }
+  Resources(const Resources&) = delete;
+  Resources& operator=(const Resources&) = delete;
+
+  // Before the splat, after it, after the resolve.
+  static constexpr std::uint32_t kTimestamps = 3;
+
+  void writeTimestamp(VkCommandBuffer commands, std::uint64_t value, std::uint32_t which) const {
+    if (timestamps == VK_NULL_HANDLE) return;
+    const auto query = static_cast<std::uint32_t>(value % kFramesInFlight) * kTimestamps + which;
+    if (which == 0) vkCmdResetQueryPool(commands, timestamps, query, kTimestamps);
+    vkCmdWriteTimestamp2(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, timestamps, query);
+  }
+
+  struct Slot {
+    gpu::CommandPool pool;
+    gpu::Buffer chunks;  // host-visible SplatChunk table
+  };
+
+  const gpu::Device& device;
+  gpu::MemoryAllocator& allocator;
+  lod::NodeCache& nodes;
+  gpu::ComputePipeline splat;
+  gpu::ComputePipeline resolve;
+  gpu::TimelineSemaphore timeline;
+  std::uint64_t submitted = 0;  // the last value a submission signals
+  gpu::DeletionQueue deletions;
+  gpu::UploadRing ring;
+  GpuNodeCache gpu_nodes;
+  std::unique_ptr<RenderTarget> target;
+  std::array<Slot, kFramesInFlight> slots;
+  gpu::CommandPool readback_pool;
+  gpu::Buffer readback;                  // host-visible
+  std::vector<ChunkOrigin> last_chunks;  // of the last rendered frame
+  std::uint64_t frames = 0;
+  std::uint64_t last_frame_value = 0;       // the timeline value of the last rendered frame
+  VkQueryPool timestamps = VK_NULL_HANDLE;  // kTimestamps per frame slot, with gpu_timing
+
+  void waitForAll() { timeline.wait(submitted, kNoTimeout); }
+
+  void ensureTarget(std::uint32_t width, std::uint32_t height) {
+    if (target && target->width == width && target->height == height) return;
+    if (target) {
+      std::shared_ptr<RenderTarget> old = std::move(target);  // the last frame may still use it
+      deletions.defer(submitted, [old]() mutable { old.reset(); });
+    }
+    target = std::make_unique<RenderTarget>(device, allocator, width, height);
+  }
+
+  void ensureChunkCapacity(Slot& slot, std::size_t chunks) {
+    const VkDeviceSize bytes = std::max<std::size_t>(chunks, 1) * sizeof(shader::SplatChunk);
+    if (slot.chunks && slot.chunks.size() >= bytes) return;
+    // The slot's last frame is done (paced): its table may go now.
+    slot.chunks = gpu::Buffer(device, allocator, std::max<VkDeviceSize>(bytes, 2 * slot.chunks.size()),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, "chunk table");
+  }
+
+  void ensureReadback(VkDeviceSize bytes) {
+    if (readback && readback.size() >= bytes) return;
+    readback = gpu::Buffer(device, allocator, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::kHostMemory, "readback");
+  }
+
+  // Copies `regions` of `source` into the readback buffer, waiting for the GPU.
+  void readBack(const gpu::Buffer& source, std::span<const VkBufferCopy> regions) {
+    waitForAll();
+    readback_pool.reset();
+    VkCommandBuffer commands = readback_pool.begin();
+    gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    vkCmdCopyBuffer(commands, source.handle(), readback.handle(), static_cast<std::uint32_t>(regions.size()),
+                    regions.data());
+    gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    gpu::submit(device, commands, timeline, ++submitted);
+    waitForAll();
+  }
+};
+
+PointRenderer::PointRenderer(const gpu::Device& device, gpu::MemoryAllocator& allocator, lod::NodeCache& nodes,
+                             const RendererOptions& options)
+    : resources_(std::make_unique<Resources>(device, allocator, nodes, options)) {}
+
+PointRenderer::~PointRenderer() {
+  try {
+    resources_->waitForAll();
+  } catch (const Error&) {
+    // A lost device finishes nothing more; the destructors below release what is left.
+  }
+}
+
+std::array<std::uint32_t, 2> PointRenderer::targetSize() const {
+  const auto& target = resources_->target;
+  return target ? std::array{target->width, target->height} : std::array<std::uint32_t, 2>{0, 0};
+}
+
+GpuNodeCacheStats PointRenderer::gpuNodeStats() const {
+  return resources_->gpu_nodes.stats();
+}
+
+FrameStats PointRenderer::render(const view::Camera& camera, const RenderSettings& settings, NodeLoading loading) {
+  Resources& r = *resources_;
+  view::validateCamera(camera);
+  const std::uint64_t value = ++r.submitted;
+  FrameStats stats;
+  stats.frame = ++r.frames;
+
+  // 1. Pace.
+  if (value > kFramesInFlight) r.timeline.wait(value - kFramesInFlight, kNoTimeout);
+  const std::uint64_t completed = r.timeline.value();
+  r.deletions.collect(completed);
+  r.ring.reclaim(completed);
+  Resources::Slot& slot = r.slots[value % kFramesInFlight];
+  slot.pool.reset();
+  r.ensureTarget(static_cast<std::uint32_t>(camera.viewport_width_px),
+                 static_cast<std::uint32_t>(camera.viewport_height_px));
+  const RenderTarget& target = *r.target;
+  VkCommandBuffer commands = slot.pool.begin();
+  // The previous frame's resolve reads what this frame clears and overwrites.
+  gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
+                     VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
+
+  // 2. Select and upload.
+  const lod::Octree& octree = r.nodes.octree();
+  const NodeSelection selection = selectNodes(octree, camera, settings.selection);
+  stats.nodes_selected = selection.nodes.size();
+  stats.points_selected = selection.points;
+  stats.budget_reached = selection.budget_reached;
+  struct Drawn {
+    const lod::NodeInfo* info;
+    const GpuNode* node;
+  };
+  std::vector<Drawn> drawn;
+  drawn.reserve(selection.nodes.size());
+  for (const lod::NodeInfo* info : selection.nodes) {
+    const GpuNode* node = r.gpu_nodes.use(info->key, value);
+    if (node == nullptr) {
+      const std::shared_ptr<const lod::NodePoints> points =
+          loading == NodeLoading::kWait ? r.nodes.get(info->key) : r.nodes.tryGet(info->key);
+      if (points) {
+        node = r.gpu_nodes.upload(*points, commands, r.ring, value);
+        if (node != nullptr) stats.bytes_uploaded += node->points.size();
+      }
+    }
+    if (node == nullptr) {
+      ++stats.nodes_missing;
+      continue;
+    }
+    drawn.push_back({info, node});
+  }
+  r.ring.close(value);
+
+  // 3. The chunk table.
+  std::size_t chunk_count = 0;
+  for (const Drawn& d : drawn) chunk_count += (d.node->point_count + shader::kChunkPoints - 1) / shader::kChunkPoints;
+  r.ensureChunkCapacity(slot, chunk_count);
+  auto* chunks = static_cast<shader::SplatChunk*>(slot.chunks.mapped());
+  r.last_chunks.clear();
+  r.last_chunks.reserve(chunk_count);
+
+  const double elevation_base = octree.header().bounds.min[2];
+  std::uint64_t next_id = 0;
+  std::size_t c = 0;
+  for (const Drawn& d : drawn) {
+    const std::array<double, 3> origin = octree.cube().cellMin(d.info->key);
+    const SplatTransform transform = splatTransform(camera, origin);
+    for (std::uint32_t first = 0; first < d.node->point_count; first += shader::kChunkPoints) {
+      shader::SplatChunk& chunk = chunks[c++];
+      std::memcpy(chunk.clip_from_node, transform.clip_from_origin.data(), sizeof chunk.clip_from_node);
+      std::memcpy(chunk.depth_from_node, transform.depth_from_origin.data(), sizeof chunk.depth_from_node);
+      chunk.points = d.node->points.address() + VkDeviceAddress{first} * sizeof(lod::PackedPoint);
+      chunk.labels = 0;
+      chunk.point_count = std::min(shader::kChunkPoints, d.node->point_count - first);
+      chunk.first_id = static_cast<std::uint32_t>(next_id);
+      chunk.elevation_offset = static_cast<float>(origin[2] - elevation_base);
+      chunk.reserved = 0;
+      r.last_chunks.push_back({chunk.first_id, d.info->key, first});
+      next_id += chunk.point_count;
+    }
+    ++stats.nodes_drawn;
+    stats.points_drawn += d.node->point_count;
+  }
+  assert(next_id < shader::kEmptyHigh && "more points in a frame than 32-bit ids: lower the point budget");
+
+  // 4. Record and submit.
+  vkCmdFillBuffer(commands, target.visibility.handle(), 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);
+  gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
+  const auto count = static_cast<std::uint32_t>(chunk_count);
+  r.writeTimestamp(commands, value, 0);
+  if (count > 0) {
+    const shader::SplatPush push{slot.chunks.address(),
+                                 target.visibility.address(),
+                                 target.width,
+                                 target.height,
+                                 count,
+                                 static_cast<float>(camera.near_m)};
+    r.splat.dispatch(commands, push, count);
+    gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
+  }
+  ColourMode mode = settings.colour;
+  if (mode == ColourMode::kAuto) {
+    const std::uint32_t attributes = octree.header().attributes;
+    mode = (attributes & lod::kHasColour)      ? ColourMode::kRgb
+           : (attributes & lod::kHasIntensity) ? ColourMode::kIntensity
+                                               : ColourMode::kElevation;
+  }
+  const std::uint32_t colour_mode = mode == ColourMode::kRgb         ? shader::kColourRgb
+                                    : mode == ColourMode::kIntensity ? shader::kColourIntensity
+                                    : mode == ColourMode::kElevation ? shader::kColourElevation
+                                                                     : shader::kColourSegment;
+  const shader::ResolvePush resolve{slot.chunks.address(),
+                                    target.visibility.address(),
+                                    target.resolved.address(),
+                                    target.colour.address(),
+                                    target.width,
+                                    target.height,
+                                    count,
+                                    colour_mode,
+                                    0.0f,
+                                    static_cast<float>(octree.header().bounds.max[2] - elevation_base),
+                                    settings.edl ? settings.edl_strength : 0.0f,
+                                    packRgba(settings.background)};
+  const std::uint32_t group = shader::kResolveGroupSize;
+  r.writeTimestamp(commands, value, 1);
+  r.resolve.dispatch(commands, resolve, (target.width + group - 1) / group, (target.height + group - 1) / group);
+  r.writeTimestamp(commands, value, 2);
+  gpu::submit(r.device, commands, r.timeline, value);
+  r.last_frame_value = value;
+
+  // 5. Evict.
+  r.gpu_nodes.evict(value, r.deletions);
+  return stats;
+}
+
+FrameStats PointRenderer::renderComplete(const view::Camera& camera, const RenderSettings& settings) {
+  // Each frame uploads what the ring holds; a frame that uploads nothing cannot do better later.
+  FrameStats stats = render(camera, settings, NodeLoading::kWait);
+  while (!stats.complete()) {
+    const FrameStats next = render(camera, settings, NodeLoading::kWait);
+    if (next.bytes_uploaded == 0 && resources_->ring.bytesInFlight() == 0) {
+      throw Error("the renderer cannot upload the " + std::to_string(next.nodes_missing) +
+                  " nodes left: raise the upload ring above the largest node");
+    }
+    stats = next;
+  }
+  return stats;
+}
+
+std::optional<GpuTimings> PointRenderer::gpuTimings() {
+  Resources& r = *resources_;
+  if (r.timestamps == VK_NULL_HANDLE || r.last_frame_value == 0) return std::nullopt;
+  r.waitForAll();
+  std::array<std::uint64_t, Resources::kTimestamps> ticks{};
+  const auto first = static_cast<std::uint32_t>(r.last_frame_value % kFramesInFlight) * Resources::kTimestamps;
+  gpu::check(vkGetQueryPoolResults(r.device.handle(), r.timestamps, first, Resources::kTimestamps, sizeof ticks,
+                                   ticks.data(), sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT),
+             "vkGetQueryPoolResults");
+  const double ms_per_tick = r.device.properties().limits.timestampPeriod * 1e-6;
+  return GpuTimings{static_cast<double>(ticks[1] - ticks[0]) * ms_per_tick,
+                    static_cast<double>(ticks[2] - ticks[1]) * ms_per_tick};
+}
+
+io::RgbaImage PointRenderer::readColour() {
+  Resources& r = *resources_;
+  if (!r.target) return {};
+  const RenderTarget& target = *r.target;
+  r.ensureReadback(target.colour.size());
+  const VkBufferCopy all{0, 0, target.colour.size()};
+  r.readBack(target.colour, std::span(&all, 1));
+  io::RgbaImage image{static_cast<int>(target.width), static_cast<int>(target.height), {}};
+  const auto* bytes = static_cast<const std::uint8_t*>(r.readback.mapped());
+  image.rgba.assign(bytes, bytes + target.colour.size());
+  return image;
+}
+
+std::optional<PickedPoint> PointRenderer::pick(int x, int y, int radius_px) {
+  Resources& r = *resources_;
+  if (!r.target || r.last_chunks.empty()) return std::nullopt;
+  const RenderTarget& target = *r.target;
+  const int x0 = std::max(x - radius_px, 0), x1 = std::min(x + radius_px, static_cast<int>(target.width) - 1);
+  const int y0 = std::max(y - radius_px, 0), y1 = std::min(y + radius_px, static_cast<int>(target.height) - 1);
+  if (x0 > x1 || y0 > y1) return std::nullopt;
+  const auto columns = static_cast<VkDeviceSize>(x1 - x0 + 1);
+  std::vector<VkBufferCopy> rows;
+  for (int row = y0; row <= y1; ++row) {
+    rows.push_back({(static_cast<VkDeviceSize>(row) * target.width + static_cast<VkDeviceSize>(x0)) * 8,
+                    static_cast<VkDeviceSize>(row - y0) * columns * 8, columns * 8});
+  }
+  r.ensureReadback(rows.size() * columns * 8);
+  r.readBack(target.resolved, rows);
+
+  const auto* values = static_cast<const std::uint64_t*>(r.readback.mapped());
+  std::optional<PickedPoint> best;
+  long best_distance = 0;
+  std::uint64_t best_value = 0;
+  for (int row = y0; row <= y1; ++row) {
+    for (int column = x0; column <= x1; ++column) {
+      const std::uint64_t v =
+          values[static_cast<std::size_t>(row - y0) * columns + static_cast<std::size_t>(column - x0)];
+      if (v == ~std::uint64_t{0}) continue;
+      const long distance = long{column - x} * (column - x) + long{row - y} * (row - y);
+      if (distance > long{radius_px} * radius_px) continue;
+      if (best && (distance > best_distance || (distance == best_distance && v >= best_value))) continue;
+      best_distance = distance;
+      best_value = v;
+      best = PickedPoint{};
+      best->pixel_x = column;
+      best->pixel_y = row;
+    }
+  }
+  if (!best) return std::nullopt;
+  const auto id = static_cast<std::uint32_t>(best_value);
+  const std::uint32_t depth_bits = static_cast<std::uint32_t>(best_value >> 32);
+  std::memcpy(&best->depth_m, &depth_bits, sizeof depth_bits);
+  const auto chunk = std::upper_bound(r.last_chunks.begin(), r.last_chunks.end(), id,
+                                      [](std::uint32_t v, const ChunkOrigin& o) { return v < o.first_id; }) -
+                     1;
+  best->node = chunk->node;
+  best->index = chunk->first_point + (id - chunk->first_id);
+  const std::shared_ptr<const lod::NodePoints> points = r.nodes.get(chunk->node);
+  best->position = points->position(best->index);
+  return best;
+}
+
+}  // namespace plumb::render

@@ -1,0 +1,134 @@
+#pragma once
+// The point cloud renderer: each frame selects octree nodes under a point budget
+// (node_selection.h), streams missing ones to the GPU, splats them into a visibility buffer
+// (shaders/splat.comp.glsl) and resolves colour with eye-dome lighting
+// (shaders/resolve.comp.glsl), off screen; a window copies the colour into its swapchain.
+//
+// Frames are paced by a timeline semaphore: frame n waits for frame n - kFramesInFlight, and
+// whatever a frame uses lives until the GPU has passed it (the deletion queue). A frame never
+// waits for disk unless asked to (NodeLoading::kWait, for headless renders): a node not loaded
+// yet is fetched by NodeCache's background jobs, and its parent, always drawn, stands in.
+//
+// Not thread-safe: one thread (the render thread) calls everything.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "engine/io/png_image.h"
+#include "engine/lod/cell_key.h"
+#include "engine/render/gpu_node_cache.h"
+#include "engine/render/node_selection.h"
+
+namespace plumb::gpu {
+class Device;
+class MemoryAllocator;
+}  // namespace plumb::gpu
+namespace plumb::lod {
+class NodeCache;
+}
+namespace plumb::view {
+struct Camera;
+}
+
+namespace plumb::render {
+
+enum class ColourMode : std::uint8_t {
+  kAuto,  // RGB where the cloud has colour, else intensity, else elevation
+  kRgb,
+  kIntensity,
+  kElevation,
+  kSegment,
+};
+
+struct RenderSettings {
+  ColourMode colour = ColourMode::kAuto;
+  bool edl = true;
+  float edl_strength = 1.0f;
+  std::array<std::uint8_t, 4> background{30, 32, 36, 255};  // RGBA
+  SelectionOptions selection;
+};
+
+enum class NodeLoading : std::uint8_t {
+  kStream,  // never block: draw what is on the GPU, fetch the rest in the background
+  kWait,    // load every selected node before drawing (headless renders)
+};
+
+struct RendererOptions {
+  std::uint64_t gpu_budget_bytes = std::uint64_t{768} << 20;  // resident node points
+  std::uint64_t upload_ring_bytes = std::uint64_t{64} << 20;  // per frame at most this is uploaded
+  bool gpu_timing = false;  // time the splat and the resolve with GPU timestamps (benchmarks)
+};
+
+// GPU time of the last frame's passes (RendererOptions::gpu_timing).
+struct GpuTimings {
+  double splat_ms = 0.0;
+  double resolve_ms = 0.0;
+};
+
+struct FrameStats {
+  std::uint64_t frame = 0;
+  std::uint64_t nodes_selected = 0;
+  std::uint64_t nodes_drawn = 0;
+  std::uint64_t nodes_missing = 0;  // selected but not on the GPU yet
+  std::uint64_t points_selected = 0;
+  std::uint64_t points_drawn = 0;
+  std::uint64_t bytes_uploaded = 0;
+  bool budget_reached = false;
+  bool complete() const { return nodes_missing == 0; }
+};
+
+// The point under a pixel, from the last frame.
+struct PickedPoint {
+  std::array<double, 3> position;  // world coordinates, double precision
+  lod::CellKey node;
+  std::uint32_t index = 0;  // in the node's points
+  int pixel_x = 0, pixel_y = 0;
+  float depth_m = 0.0f;  // in front of the eye
+};
+
+class PointRenderer {
+ public:
+  static constexpr std::uint64_t kFramesInFlight = 2;
+
+  PointRenderer(const gpu::Device& device, gpu::MemoryAllocator& allocator, lod::NodeCache& nodes,
+                const RendererOptions& options = {});
+  // Waits for the GPU to finish every frame.
+  ~PointRenderer();
+  PointRenderer(const PointRenderer&) = delete;
+  PointRenderer& operator=(const PointRenderer&) = delete;
+
+  // Renders one frame of the camera's viewport size off screen. The camera must be valid.
+  // Throws gpu::DeviceLost when the device is lost, plumb::Error for a corrupt node (kWait).
+  FrameStats render(const view::Camera& camera, const RenderSettings& settings,
+                    NodeLoading loading = NodeLoading::kStream);
+
+  // Renders with NodeLoading::kWait until every selected node is drawn (the upload ring may
+  // take several frames for a big budget) and returns the last frame's stats.
+  FrameStats renderComplete(const view::Camera& camera, const RenderSettings& settings);
+
+  // Waits for the last frame and copies its colour out.
+  io::RgbaImage readColour();
+
+  // Waits for the last frame; the point nearest to pixel (x, y) (rows from the top) within
+  // `radius_px`, nearer to the eye on a tie; nothing when no point is there.
+  std::optional<PickedPoint> pick(int x, int y, int radius_px = 3);
+
+  // The last frame's target size, 0 x 0 before the first frame.
+  std::array<std::uint32_t, 2> targetSize() const;
+
+  // Waits for the last frame and reads its GPU timestamps; nothing without gpu_timing or
+  // before the first frame.
+  std::optional<GpuTimings> gpuTimings();
+
+  // The nodes resident on the GPU, their bytes, uploads and evictions.
+  GpuNodeCacheStats gpuNodeStats() const;
+
+ private:
+  struct Resources;
+  std::unique_ptr<Resources> resources_;
+};
+
+}  // namespace plumb::render

@@ -1,0 +1,85 @@
+// Layouts and constants shared by the renderer's GLSL (shaders/*.glsl) and C++ (engine/render).
+// Only 32- and 64-bit scalars and arrays of 32-bit scalars, whose std430 layout equals the C++
+// layout with natural alignment; engine/render static_asserts the sizes.
+#ifndef PLUMB_SHADERS_RENDER_LAYOUT_H
+#define PLUMB_SHADERS_RENDER_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace plumb::shader {
+using uint = std::uint32_t;
+using std::uint64_t;
+#endif
+
+// A node's points are drawn in chunks of at most this many, one splat work group each, so that
+// big and small nodes spread evenly over the GPU.
+const uint kChunkPoints = 4096;
+const uint kSplatGroupSize = 128;
+const uint kResolveGroupSize = 8;  // the resolve runs on 8 x 8 pixel tiles
+
+// The words of one stored point (lod::PackedPoint): x, y, z as floats relative to the node's
+// origin, then r | g << 16, then b | intensity << 16.
+const uint kPointWords = 5;
+
+// The visibility buffer's value for a pixel no point reached: above every depth << 32 | id.
+const uint kEmptyHigh = 0xFFFFFFFFu;
+
+const uint kColourRgb = 0u;
+const uint kColourIntensity = 1u;
+const uint kColourElevation = 2u;
+const uint kColourSegment = 3u;
+
+// One chunk of a node's points, as the splat and the resolve see it.
+struct SplatChunk {
+  float clip_from_node[16];  // column-major: node position -> (pixel x, pixel y, _, 1) * w
+  float depth_from_node[4];  // the row giving the view depth (metres in front of the eye)
+  uint64_t points;           // device address of the chunk's first point
+  uint64_t labels;           // device address of the chunk's first segment label (uint); 0: none
+  uint point_count;          // at most kChunkPoints
+  uint first_id;             // the id of the chunk's first point; ids count on across the frame
+  float elevation_offset;    // the node origin's z above RenderPush's elevation base
+  uint reserved;
+};
+
+struct SplatPush {
+  uint64_t chunks;      // SplatChunk[chunk_count]
+  uint64_t visibility;  // uint64_t[width * height], cleared to all ones
+  uint width;
+  uint height;
+  uint chunk_count;
+  float near_m;  // points nearer than this to the eye are clipped
+};
+
+struct ResolvePush {
+  uint64_t chunks;      // as in SplatPush
+  uint64_t visibility;  // read: the splat's result
+  uint64_t resolved;    // written: the visibility with one-pixel holes filled (picking, overlays)
+  uint64_t colour;      // written: RGBA8 per pixel, R in the lowest byte
+  uint width;
+  uint height;
+  uint chunk_count;
+  uint colour_mode;
+  float elevation_min;  // the elevation colour ramp, above the elevation base
+  float elevation_max;
+  float edl_strength;  // eye-dome lighting; 0: off
+  uint background;     // RGBA8 of empty pixels
+};
+
+// The bare splat of the benchmark (shaders/bare_splat.comp.glsl): one flat array of points and
+// one transform, one invocation per point; what the renderer's splat is measured against.
+struct BareSplatPush {
+  uint64_t points;
+  uint64_t visibility;
+  float clip_from_points[16];
+  float depth_from_points[4];
+  uint width;
+  uint height;
+  uint point_count;
+  float near_m;
+};
+
+#ifdef __cplusplus
+}  // namespace plumb::shader
+#endif
+
+#endif

@@ -1,0 +1,255 @@
+// The point renderer off screen on lavapipe (or the GPU PLUMB_GPU names) with validation on:
+// renders of the wall scene (render_scene.h) checked pixel by pixel, eye-dome lighting on and
+// off, picking against the scene's grid, the point budget, resizing, eviction and streaming.
+
+#include "engine/render/point_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "engine/gpu/device.h"
+#include "engine/gpu/instance.h"
+#include "engine/gpu/memory.h"
+#include "engine/lod/node_cache.h"
+#include "engine/lod/octree.h"
+#include "tests/engine/render/render_scene.h"
+#include "tests/support/gpu_test.h"
+
+namespace plumb::render {
+namespace {
+
+constexpr std::uint32_t kRed = 0xFF0000FF, kGreen = 0xFF00FF00, kBlue = 0xFFFF0000;  // RGBA, R lowest
+constexpr int kWidth = 128, kHeight = 96;  // 3.1 cm pixels: every pixel of a wall holds points
+
+std::array<int, 4> channels(std::uint32_t rgba) {
+  return {int(rgba & 0xFF), int((rgba >> 8) & 0xFF), int((rgba >> 16) & 0xFF), int(rgba >> 24)};
+}
+
+// Colours match within `tolerance` per channel.
+::testing::AssertionResult near(std::uint32_t actual, std::uint32_t expected, int tolerance = 1) {
+  const auto a = channels(actual), e = channels(expected);
+  for (std::size_t c = 0; c < 4; ++c) {
+    if (std::abs(a[c] - e[c]) > tolerance) {
+      return ::testing::AssertionFailure() << "RGBA " << a[0] << "," << a[1] << "," << a[2] << "," << a[3] << " is not "
+                                           << e[0] << "," << e[1] << "," << e[2] << "," << e[3];
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+class PointRendererTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    directory_ = std::make_unique<test::TempDirectory>("plumb_point_renderer_test");
+    walls_ = lod::Octree::open(test::buildWallScene(*directory_));
+    far_offset_ = {500'000.25, 5'000'000.5, 312.0};
+    far_walls_ = lod::Octree::open(test::buildWallScene(*directory_, far_offset_, 4'000));
+  }
+  static void TearDownTestSuite() {
+    walls_.reset();
+    far_walls_.reset();
+    directory_.reset();
+  }
+
+  void SetUp() override {
+    instance_ = std::make_unique<gpu::Instance>(gpu::InstanceOptions{.validation = true});
+    device_ = std::make_unique<gpu::Device>(*instance_, test::testDeviceChoice());
+    allocator_ = std::make_unique<gpu::MemoryAllocator>(*device_);
+  }
+  void TearDown() override {
+    allocator_.reset();
+    device_.reset();
+    test::expectNoValidationMessages(*instance_);
+  }
+
+  static RenderSettings flat() {
+    RenderSettings settings;
+    settings.edl = false;
+    return settings;
+  }
+
+  static inline std::unique_ptr<test::TempDirectory> directory_;
+  static inline std::shared_ptr<const lod::Octree> walls_, far_walls_;
+  static inline test::SceneOffset far_offset_;
+  std::unique_ptr<gpu::Instance> instance_;
+  std::unique_ptr<gpu::Device> device_;
+  std::unique_ptr<gpu::MemoryAllocator> allocator_;
+};
+
+TEST_F(PointRendererTest, TheFrontViewShowsEachPlaneWhereItIs) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  renderer.renderComplete(camera, flat());
+  const io::RgbaImage image = renderer.readColour();
+  ASSERT_EQ(image.width, kWidth);
+  ASSERT_EQ(image.height, kHeight);
+  const std::uint32_t background = 0xFF24201E;  // RenderSettings' default (30, 32, 36)
+  struct Probe {
+    double x, z;
+    std::uint32_t colour;
+  };
+  const Probe probes[] = {
+      {-2.0, 0.5, kRed},  {-2.5, 2.8, kRed},      {-0.5, 0.5, kRed},        {2.0, 0.5, kGreen},
+      {2.5, 2.8, kGreen}, {0.5, 2.5, kGreen},     {-0.5, 1.5, kBlue},       {0.5, 1.2, kBlue},
+      {0.0, 1.8, kBlue},  {0.0, 3.3, background}, {-2.0, -0.3, background},
+  };
+  for (const Probe& probe : probes) {
+    const auto [column, row] = test::frontPixel(camera, probe.x, probe.z);
+    EXPECT_TRUE(near(image.pixel(column, row), probe.colour)) << "at x " << probe.x << ", z " << probe.z;
+  }
+  // Every pixel of the walls is covered: the selection refines to 0.6 pixel spacing and the
+  // resolve fills the one-pixel holes left.
+  int empty = 0;
+  for (int row = 0; row < kHeight; ++row) {
+    for (int column = 0; column < kWidth; ++column) {
+      const double z = 1.5 + (0.5 * kHeight - row - 0.5) * 4.0 / kHeight;
+      if (z > 0.05 && z < 2.95 && image.pixel(column, row) == background) ++empty;
+    }
+  }
+  EXPECT_EQ(empty, 0);
+}
+
+TEST_F(PointRendererTest, EyeDomeLightingOutlinesTheSquareAndLeavesFlatWallsAlone) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  renderer.renderComplete(camera, flat());
+  const io::RgbaImage off = renderer.readColour();
+  RenderSettings lit;
+  lit.edl = true;
+  renderer.renderComplete(camera, lit);
+  const io::RgbaImage on = renderer.readColour();
+
+  // Inside a wall every neighbour is as far as the pixel: no shading at all.
+  for (const auto& [x, z] : {std::pair{-2.0, 0.5}, std::pair{2.0, 2.5}, std::pair{0.0, 1.5}}) {
+    const auto [column, row] = test::frontPixel(camera, x, z);
+    EXPECT_TRUE(near(on.pixel(column, row), off.pixel(column, row))) << "at x " << x << ", z " << z;
+  }
+  // Just outside the square, on the wall 2 m behind it, the square's pixels are nearer: dark.
+  for (const auto& [x, z] : {std::pair{-1.02, 1.5}, std::pair{0.0, 2.02}, std::pair{1.02, 1.5}}) {
+    const auto [column, row] = test::frontPixel(camera, x, z);
+    const auto lit_channels = channels(on.pixel(column, row)), flat_channels = channels(off.pixel(column, row));
+    const int brightest = std::max({flat_channels[0], flat_channels[1], flat_channels[2]});
+    EXPECT_GT(brightest, 200) << "at x " << x << ", z " << z;
+    EXPECT_LT(std::max({lit_channels[0], lit_channels[1], lit_channels[2]}), brightest / 2)
+        << "at x " << x << ", z " << z;
+  }
+}
+
+// 100 random pixels, the scene 5,000 km from the origin: each pick is a point of the scene's
+// grid to the micrometre, on the surface the pixel shows, within the pick radius.
+TEST_F(PointRendererTest, PickingReturnsTheVisiblePointInWorldCoordinates) {
+  lod::NodeCache nodes(far_walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight, far_offset_);
+  renderer.renderComplete(camera, flat());
+  const io::RgbaImage image = renderer.readColour();
+  std::mt19937 random(11);
+  int picked = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const int x = static_cast<int>(random() % kWidth), y = static_cast<int>(random() % kHeight);
+    const std::optional<PickedPoint> pick = renderer.pick(x, y, 2);
+    const std::uint32_t shown = image.pixel(x, y);
+    const bool shows_point = channels(shown)[0] > 200 || channels(shown)[1] > 200 || channels(shown)[2] > 200;
+    if (!pick) {
+      EXPECT_FALSE(shows_point) << "nothing picked at " << x << ", " << y;
+      continue;
+    }
+    ++picked;
+    EXPECT_LE((pick->pixel_x - x) * (pick->pixel_x - x) + (pick->pixel_y - y) * (pick->pixel_y - y), 4);
+    const double local_x = pick->position[0] - far_offset_.x, local_y = pick->position[1] - far_offset_.y,
+                 local_z = pick->position[2] - far_offset_.z;
+    const double grid_x = std::round((local_x + 4.0) / test::kGridStep) * test::kGridStep - 4.0;
+    const double grid_z = std::round(local_z / test::kGridStep) * test::kGridStep;
+    EXPECT_NEAR(local_x, grid_x, 1e-6);
+    EXPECT_NEAR(local_z, grid_z, 1e-6);
+    // The nearest surface: the square (y = 3) wherever the pixel shows it, else a wall (y = 5).
+    const bool blue = channels(image.pixel(pick->pixel_x, pick->pixel_y))[2] > 200;
+    EXPECT_NEAR(local_y, blue ? 3.0 : 5.0, 1e-6) << "at " << x << ", " << y;
+    EXPECT_NEAR(pick->depth_m, blue ? 13.0 : 15.0, 1e-3);
+    const auto [column, row] = test::frontPixel(camera, local_x, local_z, far_offset_);
+    EXPECT_LE(std::abs(column - pick->pixel_x), 1);
+    EXPECT_LE(std::abs(row - pick->pixel_y), 1);
+  }
+  EXPECT_GT(picked, 60);  // most of the view shows walls
+}
+
+TEST_F(PointRendererTest, ThePointBudgetHolds) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  std::uint64_t previous = 0;
+  for (const std::uint64_t budget : {5'000u, 20'000u, 50'000u, 1'000'000u}) {
+    RenderSettings settings = flat();
+    settings.selection.point_budget = budget;
+    settings.selection.max_spacing_px = 0.0;  // only the budget stops the refinement
+    const FrameStats stats = renderer.renderComplete(camera, settings);
+    EXPECT_LE(stats.points_drawn, budget);
+    EXPECT_GE(stats.points_drawn, previous);
+    EXPECT_EQ(stats.budget_reached, budget < test::wallScenePoints()) << budget;
+    previous = stats.points_drawn;
+  }
+  EXPECT_EQ(previous, test::wallScenePoints());
+  // Without a budget to stop it, the level of detail stops: a smaller view needs fewer points.
+  const FrameStats small = renderer.renderComplete(test::wallSceneFront(kWidth / 4, kHeight / 4), flat());
+  EXPECT_FALSE(small.budget_reached);
+  EXPECT_LT(small.points_drawn, test::wallScenePoints() / 2);
+}
+
+TEST_F(PointRendererTest, ResizingAndEvictionKeepTheImageRight) {
+  lod::NodeCache nodes(far_walls_, 64 << 20);
+  RendererOptions options;
+  options.gpu_budget_bytes = 256 << 10;  // a few nodes: every view evicts
+  options.upload_ring_bytes = 1 << 20;
+  PointRenderer renderer(*device_, *allocator_, nodes, options);
+  const int sizes[][2] = {{64, 48}, {100, 80}, {48, 64}, {128, 96}, {64, 48}};
+  for (const auto& size : sizes) {
+    for (const double shift : {-2.0, 2.0}) {
+      view::Camera camera = test::wallSceneFront(size[0], size[1], far_offset_);
+      camera.position.x() += shift;
+      camera.target.x() += shift;
+      camera.ortho_height_m = 2.0;
+      renderer.renderComplete(camera, flat());
+      const io::RgbaImage image = renderer.readColour();
+      ASSERT_EQ(image.width, size[0]);
+      ASSERT_EQ(image.height, size[1]);
+      // The centre shows the red wall on the left, the green one on the right.
+      EXPECT_TRUE(near(image.pixel(size[0] / 2, size[1] * 3 / 4), shift < 0 ? kRed : kGreen))
+          << size[0] << " x " << size[1] << ", shift " << shift;
+    }
+  }
+  const GpuNodeCacheStats stats = renderer.gpuNodeStats();
+  EXPECT_GT(stats.evictions, 0u);
+  EXPECT_GT(stats.uploads, stats.nodes);
+}
+
+// Streaming never waits for disk: the first frames draw what is loaded, the parent nodes stand
+// in, and once every node has arrived the picture is the one a waiting render makes.
+TEST_F(PointRendererTest, StreamedFramesConvergeToTheCompleteImage) {
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight, far_offset_);
+  io::RgbaImage complete;
+  FrameStats waited;
+  {
+    lod::NodeCache nodes(far_walls_, 64 << 20);
+    PointRenderer renderer(*device_, *allocator_, nodes);
+    waited = renderer.renderComplete(camera, flat());
+    complete = renderer.readColour();
+  }
+  lod::NodeCache nodes(far_walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  FrameStats first = renderer.render(camera, flat());
+  EXPECT_GT(first.nodes_missing, 0u);  // nothing was loaded yet
+  FrameStats stats = first;
+  for (int frame = 0; frame < 100'000 && !stats.complete(); ++frame) stats = renderer.render(camera, flat());
+  ASSERT_TRUE(stats.complete());
+  EXPECT_EQ(stats.points_drawn, waited.points_drawn);
+  EXPECT_EQ(renderer.readColour().rgba, complete.rgba);
+}
+
+}  // namespace
+}  // namespace plumb::render
