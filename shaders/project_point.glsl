@@ -1,4 +1,4 @@
-// The splat's projection of one point, shared by splat.comp.glsl and bare_splat.comp.glsl:
+// Projection helpers of the splat (splat.comp.glsl, bare_splat.comp.glsl) and the overlays. projectPoint:
 // whether the point (relative to its origin) lands on a pixel in front of the near plane, and
 // its visibility value there (view depth bits << 32 | id). Needs GL_EXT_shader_explicit_arithmetic_types_int64.
 #ifndef PLUMB_SHADERS_PROJECT_POINT_GLSL

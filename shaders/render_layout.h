@@ -65,6 +65,32 @@ struct ResolvePush {
   uint background;     // RGBA8 of empty pixels
 };
 
+// Overlay vertices (shaders/overlay.*.glsl), positions relative to the eye. A line is drawn as a
+// quad: each of its six vertices holds both ends and pushes itself sideways by offset_px.x; a
+// marker's six vertices share its centre and push out by offset_px.
+const uint kOverlayLine = 1u;    // flags: expand sideways from the line a -> other
+const uint kOverlayMarker = 2u;  // flags: offset_px is a screen offset from position
+const uint kOverlayOnTop = 4u;   // flags: drawn even where the cloud is nearer (snap markers)
+
+struct OverlayVertex {
+  float position[3];
+  float other[3];  // the line's other end (kOverlayLine)
+  float offset_px[2];
+  uint colour;  // RGBA8, R in the lowest byte, straight alpha
+  uint flags;
+};
+
+struct OverlayPush {
+  uint64_t vertices;        // OverlayVertex[]
+  uint64_t resolved;        // the resolved visibility: the overlay's depth test
+  float clip_from_eye[16];  // Vulkan clip space from eye-relative world positions
+  float depth_from_eye[4];  // the row giving the view depth
+  uint width;
+  uint height;
+  float depth_tolerance;  // a fragment hides behind the cloud beyond depth * (1 + this) + 1 cm
+  uint reserved;
+};
+
 // The bare splat of the benchmark (shaders/bare_splat.comp.glsl): one flat array of points and
 // one transform, one invocation per point; what the renderer's splat is measured against.
 struct BareSplatPush {

@@ -50,4 +50,9 @@ void submit(const Device& device, VkCommandBuffer commands, const TimelineSemaph
 void memoryBarrier(VkCommandBuffer commands, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
                    VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access);
 
+// Moves `image` (the whole colour image) from one layout to another, after `src` and before `dst`.
+void imageBarrier(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stages,
+                  VkAccessFlags2 dst_access);
+
 }  // namespace plumb::gpu

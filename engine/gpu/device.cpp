@@ -59,7 +59,8 @@ struct FeatureChain {
     visit(v12.bufferDeviceAddress, "bufferDeviceAddress");
     visit(v12.timelineSemaphore, "timelineSemaphore");
     visit(v13.synchronization2, "synchronization2");
-    visit(v13.maintenance4, "maintenance4");  // glslc's SPIR-V for Vulkan 1.3 sets workgroup sizes by id
+    visit(v13.maintenance4, "maintenance4");          // glslc's SPIR-V for Vulkan 1.3 sets workgroup sizes by id
+    visit(v13.dynamicRendering, "dynamicRendering");  // the overlay pass renders without render passes
   }
 };
 

@@ -6,7 +6,8 @@
 //
 // The renderer needs, and the device enables: 64-bit integers and 64-bit buffer atomics (the
 // splat's atomicMin of depth << 32 | point id), buffer device address, timeline semaphores
-// (frame pacing), synchronization2 and maintenance4 (which the SPIR-V of shaders/ needs). A device without them is
+// (frame pacing), synchronization2, dynamic rendering (overlays) and maintenance4 (which the SPIR-V
+// of shaders/ needs). A device without them is
 // passed over, and if none is left the error lists what each lacked.
 
 #include <vulkan/vulkan.h>

@@ -1,8 +1,10 @@
 #include "engine/render/gpu_node_cache.h"
 
+#include <cassert>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "engine/gpu/deletion_queue.h"
 #include "engine/gpu/upload_ring.h"
@@ -52,16 +54,43 @@ const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, VkCommandBuff
   return &entry.node;
 }
 
+const gpu::Buffer* GpuNodeCache::labels(const lod::CellKey& key, const std::vector<std::uint32_t>& labels,
+                                        std::uint64_t version, VkCommandBuffer commands, gpu::UploadRing& ring,
+                                        std::uint64_t frame, gpu::DeletionQueue& deletions) {
+  GpuNode& node = entries_.at(key).node;
+  assert(labels.size() == node.point_count && "segment labels for another number of points than the node has");
+  if (node.labels && node.labels_version == version) return &node.labels;
+  const VkDeviceSize bytes = labels.size() * sizeof(std::uint32_t);
+  const std::optional<gpu::UploadSpan> span = ring.allocate(bytes);
+  if (!span) return nullptr;
+  std::memcpy(span->data, labels.data(), bytes);
+  if (node.labels) {
+    auto old = std::make_shared<gpu::Buffer>(std::move(node.labels));
+    stats_.bytes -= old->size();
+    deletions.defer(frame, [old]() mutable { old.reset(); });
+  }
+  node.labels =
+      gpu::Buffer(device_, allocator_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                  gpu::kDeviceMemory, "segment labels");
+  node.labels_version = version;
+  const VkBufferCopy copy{span->offset, 0, bytes};
+  vkCmdCopyBuffer(commands, ring.buffer(), node.labels.handle(), 1, &copy);
+  stats_.bytes += bytes;
+  return &node.labels;
+}
+
 void GpuNodeCache::evict(std::uint64_t frame, gpu::DeletionQueue& deletions) {
   while (stats_.bytes > budget_bytes_ && !recency_.empty()) {
     const lod::CellKey key = recency_.back();
     const auto found = entries_.find(key);
     if (found->second.node.last_frame >= frame) break;  // everything left is drawn by this frame
-    stats_.bytes -= found->second.node.points.size();
+    GpuNode& node = found->second.node;
+    stats_.bytes -= node.points.size() + (node.labels ? node.labels.size() : 0);
     --stats_.nodes;
     ++stats_.evictions;
-    auto buffer = std::make_shared<gpu::Buffer>(std::move(found->second.node.points));
-    deletions.defer(frame, [buffer]() mutable { buffer.reset(); });
+    auto buffers =
+        std::make_shared<std::pair<gpu::Buffer, gpu::Buffer>>(std::move(node.points), std::move(node.labels));
+    deletions.defer(frame, [buffers]() mutable { buffers.reset(); });
     entries_.erase(found);
     recency_.pop_back();
   }

@@ -28,6 +28,8 @@ struct GpuNode {
   gpu::Buffer points;
   std::uint32_t point_count = 0;
   std::uint64_t last_frame = 0;  // the last frame that drew it
+  gpu::Buffer labels;            // uint32 per point (segment colours), when uploaded
+  std::uint64_t labels_version = 0;
 };
 
 struct GpuNodeCacheStats {
@@ -49,6 +51,14 @@ class GpuNodeCache {
   // `frame`. Null when the ring has no room this frame: try again in a later one.
   const GpuNode* upload(const lod::NodePoints& points, VkCommandBuffer commands, gpu::UploadRing& ring,
                         std::uint64_t frame);
+
+  // The node's segment labels of `version` on the GPU, uploading them (recorded into `commands`)
+  // when the node holds another version; null when the ring has no room this frame. The node
+  // must be resident; `labels` must have one entry per point. A replaced labels buffer is
+  // destroyed once the GPU passes `frame`.
+  const gpu::Buffer* labels(const lod::CellKey& key, const std::vector<std::uint32_t>& labels, std::uint64_t version,
+                            VkCommandBuffer commands, gpu::UploadRing& ring, std::uint64_t frame,
+                            gpu::DeletionQueue& deletions);
 
   // Evicts least recently drawn nodes, none drawn by `frame`, until the budget holds; each
   // buffer is destroyed once the GPU passes `frame`.

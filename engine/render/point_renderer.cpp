@@ -30,6 +30,7 @@
 #include "engine/gpu/vk_check.h"
 #include "engine/lod/node_cache.h"
 #include "engine/render/gpu_node_cache.h"
+#include "engine/render/overlay_pass.h"
 #include "engine/render/render_target.h"
 #include "engine/render/splat_transform.h"
 #include "engine/view/camera.h"
@@ -63,6 +64,27 @@ std::uint32_t packRgba(const std::array<std::uint8_t, 4>& c) {
   return std::uint32_t{c[0]} | std::uint32_t{c[1]} << 8 | std::uint32_t{c[2]} << 16 | std::uint32_t{c[3]} << 24;
 }
 
+// kAuto becomes what the cloud has: colour, else intensity, else elevation.
+ColourMode effectiveColourMode(ColourMode wanted, std::uint32_t attributes) {
+  if (wanted != ColourMode::kAuto) return wanted;
+  if (attributes & lod::kHasColour) return ColourMode::kRgb;
+  if (attributes & lod::kHasIntensity) return ColourMode::kIntensity;
+  return ColourMode::kElevation;
+}
+
+std::uint32_t shaderColourMode(ColourMode mode) {
+  switch (mode) {
+    case ColourMode::kRgb:
+      return shader::kColourRgb;
+    case ColourMode::kIntensity:
+      return shader::kColourIntensity;
+    case ColourMode::kElevation:
+      return shader::kColourElevation;
+    default:
+      return shader::kColourSegment;
+  }
+}
+
 }  // namespace
 
 struct PointRenderer::Resources {
@@ -76,7 +98,8 @@ struct PointRenderer::Resources {
         ring(d, a, o.upload_ring_bytes),
         gpu_nodes(d, a, o.gpu_budget_bytes),
         slots{Slot{gpu::CommandPool(d, "frame slot 0"), {}}, Slot{gpu::CommandPool(d, "frame slot 1"), {}}},
-        readback_pool(d, "readback") {
+        readback_pool(d, "readback"),
+        overlay_pass(d, a) {
     if (o.gpu_timing) {
       VkQueryPoolCreateInfo create{};
       create.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
@@ -119,7 +142,10 @@ struct PointRenderer::Resources {
   std::unique_ptr<RenderTarget> target;
   std::array<Slot, kFramesInFlight> slots;
   gpu::CommandPool readback_pool;
-  gpu::Buffer readback;                  // host-visible
+  gpu::Buffer readback;                         // host-visible
+  std::shared_ptr<const SegmentLabels> labels;  // ColourMode::kSegment
+  OverlayPass overlay_pass;
+  std::shared_ptr<const OverlayScene> overlay;
   std::vector<ChunkOrigin> last_chunks;  // of the last rendered frame
   std::uint64_t frames = 0;
   std::uint64_t last_frame_value = 0;       // the timeline value of the last rendered frame
@@ -154,8 +180,9 @@ struct PointRenderer::Resources {
     waitForAll();
     readback_pool.reset();
     VkCommandBuffer commands = readback_pool.begin();
-    gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT);
     vkCmdCopyBuffer(commands, source.handle(), readback.handle(), static_cast<std::uint32_t>(regions.size()),
                     regions.data());
     gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -182,6 +209,14 @@ std::array<std::uint32_t, 2> PointRenderer::targetSize() const {
   return target ? std::array{target->width, target->height} : std::array<std::uint32_t, 2>{0, 0};
 }
 
+void PointRenderer::setOverlay(std::shared_ptr<const OverlayScene> overlay) {
+  resources_->overlay = std::move(overlay);
+}
+
+void PointRenderer::setSegmentLabels(std::shared_ptr<const SegmentLabels> labels) {
+  resources_->labels = std::move(labels);
+}
+
 GpuNodeCacheStats PointRenderer::gpuNodeStats() const {
   return resources_->gpu_nodes.stats();
 }
@@ -204,11 +239,14 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                  static_cast<std::uint32_t>(camera.viewport_height_px));
   const RenderTarget& target = *r.target;
   VkCommandBuffer commands = slot.pool.begin();
-  // The previous frame's resolve reads what this frame clears and overwrites.
-  gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
-                     VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
+  // The previous frame (its resolve, overlays and copies) used what this frame overwrites.
+  gpu::memoryBarrier(
+      commands,
+      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+      VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT |
+          VK_ACCESS_2_TRANSFER_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+      VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
 
   // 2. Select and upload.
   const lod::Octree& octree = r.nodes.octree();
@@ -216,9 +254,12 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   stats.nodes_selected = selection.nodes.size();
   stats.points_selected = selection.points;
   stats.budget_reached = selection.budget_reached;
+  const ColourMode mode = effectiveColourMode(settings.colour, octree.header().attributes);
+  const SegmentLabels* labels = mode == ColourMode::kSegment ? r.labels.get() : nullptr;
   struct Drawn {
     const lod::NodeInfo* info;
     const GpuNode* node;
+    VkDeviceAddress labels;  // 0: none
   };
   std::vector<Drawn> drawn;
   drawn.reserve(selection.nodes.size());
@@ -236,7 +277,16 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       ++stats.nodes_missing;
       continue;
     }
-    drawn.push_back({info, node});
+    VkDeviceAddress label_address = 0;
+    if (labels != nullptr) {
+      const auto found = labels->nodes.find(info->key);
+      const gpu::Buffer* buffer =
+          found == labels->nodes.end()
+              ? nullptr
+              : r.gpu_nodes.labels(info->key, found->second, labels->version, commands, r.ring, value, r.deletions);
+      if (buffer != nullptr) label_address = buffer->address();
+    }
+    drawn.push_back({info, node, label_address});
   }
   r.ring.close(value);
 
@@ -259,7 +309,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       std::memcpy(chunk.clip_from_node, transform.clip_from_origin.data(), sizeof chunk.clip_from_node);
       std::memcpy(chunk.depth_from_node, transform.depth_from_origin.data(), sizeof chunk.depth_from_node);
       chunk.points = d.node->points.address() + VkDeviceAddress{first} * sizeof(lod::PackedPoint);
-      chunk.labels = 0;
+      chunk.labels = d.labels == 0 ? 0 : d.labels + VkDeviceAddress{first} * sizeof(std::uint32_t);
       chunk.point_count = std::min(shader::kChunkPoints, d.node->point_count - first);
       chunk.first_id = static_cast<std::uint32_t>(next_id);
       chunk.elevation_offset = static_cast<float>(origin[2] - elevation_base);
@@ -290,17 +340,6 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
     gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
   }
-  ColourMode mode = settings.colour;
-  if (mode == ColourMode::kAuto) {
-    const std::uint32_t attributes = octree.header().attributes;
-    mode = (attributes & lod::kHasColour)      ? ColourMode::kRgb
-           : (attributes & lod::kHasIntensity) ? ColourMode::kIntensity
-                                               : ColourMode::kElevation;
-  }
-  const std::uint32_t colour_mode = mode == ColourMode::kRgb         ? shader::kColourRgb
-                                    : mode == ColourMode::kIntensity ? shader::kColourIntensity
-                                    : mode == ColourMode::kElevation ? shader::kColourElevation
-                                                                     : shader::kColourSegment;
   const shader::ResolvePush resolve{slot.chunks.address(),
                                     target.visibility.address(),
                                     target.resolved.address(),
@@ -308,7 +347,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                     target.width,
                                     target.height,
                                     count,
-                                    colour_mode,
+                                    shaderColourMode(mode),
                                     0.0f,
                                     static_cast<float>(octree.header().bounds.max[2] - elevation_base),
                                     settings.edl ? settings.edl_strength : 0.0f,
@@ -317,6 +356,10 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   r.writeTimestamp(commands, value, 1);
   r.resolve.dispatch(commands, resolve, (target.width + group - 1) / group, (target.height + group - 1) / group);
   r.writeTimestamp(commands, value, 2);
+  if (r.overlay && !r.overlay->empty()) {
+    r.overlay_pass.record(commands, value % kFramesInFlight, target, *r.overlay, camera,
+                          settings.overlay_depth_tolerance);
+  }
   gpu::submit(r.device, commands, r.timeline, value);
   r.last_frame_value = value;
 

@@ -21,6 +21,8 @@
 #include "engine/lod/cell_key.h"
 #include "engine/render/gpu_node_cache.h"
 #include "engine/render/node_selection.h"
+#include "engine/render/overlay_scene.h"
+#include "engine/render/segment_labels.h"
 
 namespace plumb::gpu {
 class Device;
@@ -49,6 +51,9 @@ struct RenderSettings {
   float edl_strength = 1.0f;
   std::array<std::uint8_t, 4> background{30, 32, 36, 255};  // RGBA
   SelectionOptions selection;
+  // An overlay hides behind the cloud where it lies further than the cloud's point at its pixel
+  // by more than this fraction of the depth plus 1 cm (scanner noise, polygons fitted to it).
+  float overlay_depth_tolerance = 0.005f;
 };
 
 enum class NodeLoading : std::uint8_t {
@@ -104,6 +109,13 @@ class PointRenderer {
   // Throws gpu::DeviceLost when the device is lost, plumb::Error for a corrupt node (kWait).
   FrameStats render(const view::Camera& camera, const RenderSettings& settings,
                     NodeLoading loading = NodeLoading::kStream);
+
+  // The labelling ColourMode::kSegment shows (null: none, every point grey). Takes effect from
+  // the next frame; nodes whose labels are not uploaded yet show grey meanwhile.
+  void setSegmentLabels(std::shared_ptr<const SegmentLabels> labels);
+
+  // What the overlay pass draws (null or empty: nothing). Takes effect from the next frame.
+  void setOverlay(std::shared_ptr<const OverlayScene> overlay);
 
   // Renders with NodeLoading::kWait until every selected node is drawn (the upload ring may
   // take several frames for a big budget) and returns the last frame's stats.

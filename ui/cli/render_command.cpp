@@ -59,8 +59,7 @@ render::ColourMode colourModeNamed(const std::string& name) {
   if (name == "auto") return render::ColourMode::kAuto;
   if (name == "rgb") return render::ColourMode::kRgb;
   if (name == "intensity") return render::ColourMode::kIntensity;
-  if (name == "elevation") return render::ColourMode::kElevation;
-  return render::ColourMode::kSegment;  // the CLI's check admits nothing else
+  return render::ColourMode::kElevation;  // the CLI's check admits nothing else
 }
 
 }  // namespace
@@ -82,8 +81,11 @@ Command addRenderCommand(CLI::App& plumb) {
   sub->add_option("--budget", options->budget, "The most points drawn (default 2,000,000)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1'000'000'000}));
   sub->add_option("--edl", options->edl, "Eye-dome lighting (default on)")->check(CLI::IsMember({"on", "off"}));
-  sub->add_option("--colour", options->colour, "Colour by rgb, intensity, elevation or segment (default auto)")
-      ->check(CLI::IsMember({"auto", "rgb", "intensity", "elevation", "segment"}));
+  // Segment colours need a labelling, which the viewer makes from its grows (SegmentLabels).
+  sub->add_option("--colour", options->colour,
+                  "Colour by rgb, intensity or elevation (default auto: rgb where the cloud has colour, else "
+                  "intensity, else elevation)")
+      ->check(CLI::IsMember({"auto", "rgb", "intensity", "elevation"}));
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   sub->add_option("-o,--output", options->output, "The PNG to write")->required();
 

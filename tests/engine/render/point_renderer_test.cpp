@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <random>
 #include <string>
@@ -39,6 +40,12 @@ std::array<int, 4> channels(std::uint32_t rgba) {
     }
   }
   return ::testing::AssertionSuccess();
+}
+
+// With PLUMB_TEST_IMAGES=DIR, the tests write their renders there to be looked at.
+void keepForInspection(const io::RgbaImage& image, const std::string& name) {
+  if (const char* directory = std::getenv("PLUMB_TEST_IMAGES"))
+    io::writePng(image, std::string(directory) + "/" + name + ".png");
 }
 
 class PointRendererTest : public ::testing::Test {
@@ -124,6 +131,8 @@ TEST_F(PointRendererTest, EyeDomeLightingOutlinesTheSquareAndLeavesFlatWallsAlon
   lit.edl = true;
   renderer.renderComplete(camera, lit);
   const io::RgbaImage on = renderer.readColour();
+  keepForInspection(off, "edl_off");
+  keepForInspection(on, "edl_on");
 
   // Inside a wall every neighbour is as far as the pixel: no shading at all.
   for (const auto& [x, z] : {std::pair{-2.0, 0.5}, std::pair{2.0, 2.5}, std::pair{0.0, 1.5}}) {
@@ -139,6 +148,86 @@ TEST_F(PointRendererTest, EyeDomeLightingOutlinesTheSquareAndLeavesFlatWallsAlon
     EXPECT_LT(std::max({lit_channels[0], lit_channels[1], lit_channels[2]}), brightest / 2)
         << "at x " << x << ", z " << z;
   }
+}
+
+// Segment colours: labels by the points' own colour (red wall 1, green wall 2, the square none)
+// give each wall its own colour and leave the square grey; a new labelling replaces the old.
+TEST_F(PointRendererTest, SegmentColoursFollowTheLabels) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  RenderSettings settings = flat();
+  settings.colour = ColourMode::kSegment;
+  auto labelling = [&](std::uint64_t version, std::uint32_t red_label) {
+    auto labels = std::make_shared<SegmentLabels>();
+    labels->version = version;
+    for (const lod::NodeInfo& info : walls_->nodes()) {
+      const auto points = nodes.get(info.key);
+      std::vector<std::uint32_t>& node_labels = labels->nodes[info.key];
+      for (const lod::PackedPoint& p : points->points)
+        node_labels.push_back(p.rgb[0] > 0 ? red_label : p.rgb[1] > 0 ? 2 : 0);
+    }
+    return labels;
+  };
+  const auto red = test::frontPixel(camera, -2.0, 0.5), green = test::frontPixel(camera, 2.0, 0.5),
+             square = test::frontPixel(camera, 0.0, 1.5);
+
+  renderer.renderComplete(camera, settings);  // no labels yet: all grey
+  io::RgbaImage image = renderer.readColour();
+  EXPECT_TRUE(near(image.pixel(red[0], red[1]), 0xFF8C8C8C));
+  EXPECT_TRUE(near(image.pixel(square[0], square[1]), 0xFF8C8C8C));
+
+  renderer.setSegmentLabels(labelling(1, 1));
+  renderer.renderComplete(camera, settings);
+  image = renderer.readColour();
+  const std::uint32_t first_red = image.pixel(red[0], red[1]);
+  EXPECT_FALSE(near(first_red, image.pixel(green[0], green[1]), 20));
+  EXPECT_FALSE(near(first_red, 0xFF8C8C8C, 20));
+  EXPECT_TRUE(near(image.pixel(square[0], square[1]), 0xFF8C8C8C));
+
+  renderer.setSegmentLabels(labelling(2, 7));  // the red wall becomes segment 7
+  renderer.renderComplete(camera, settings);
+  image = renderer.readColour();
+  EXPECT_FALSE(near(image.pixel(red[0], red[1]), first_red, 20));
+}
+
+// Overlays over the wall scene: a translucent polygon on the red wall blends with it; one
+// behind the wall and one behind the blue square are hidden; a line in front shows at its width;
+// a marker behind the square shows only when drawn on top.
+TEST_F(PointRendererTest, OverlaysBlendAndHideBehindTheCloud) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  auto rectangle = [](double x0, double x1, double y, double z0, double z1, Rgba colour) {
+    OverlayScene::Polygon polygon;
+    const Eigen::Vector3d a(x0, y, z0), b(x1, y, z0), c(x1, y, z1), d(x0, y, z1);
+    polygon.triangles = {a, b, c, a, c, d};
+    polygon.colour = colour;
+    return polygon;
+  };
+  auto overlay = std::make_shared<OverlayScene>();
+  overlay->polygons.push_back(rectangle(-3.0, -1.5, 5.0, 0.3, 0.9, {255, 255, 0, 128}));  // on the red wall
+  overlay->polygons.push_back(rectangle(-3.0, -1.5, 6.0, 2.0, 2.6, {0, 255, 255, 255}));  // behind it
+  overlay->polygons.push_back(rectangle(-0.5, 0.5, 5.0, 1.2, 1.8, {0, 255, 255, 255}));   // behind the square
+  overlay->lines.push_back({{1.0, 4.0, 2.5}, {3.0, 4.0, 2.5}, {255, 255, 255, 255}, 3.0f, false});
+  overlay->markers.push_back({{0.0, 5.0, 1.5}, {255, 0, 255, 255}, 9.0f, true});
+  overlay->markers.push_back({{0.6, 5.0, 1.5}, {255, 0, 255, 255}, 9.0f, false});
+  renderer.setOverlay(overlay);
+  renderer.renderComplete(camera, flat());
+  const io::RgbaImage image = renderer.readColour();
+  keepForInspection(image, "overlays");
+  auto at = [&](double x, double z) {
+    const auto [column, row] = test::frontPixel(camera, x, z);
+    return image.pixel(column, row);
+  };
+  EXPECT_TRUE(near(at(-2.2, 0.6), 0xFF0080FF, 2)) << "half yellow over red";
+  EXPECT_TRUE(near(at(-2.2, 2.3), kRed)) << "the polygon behind the wall is hidden";
+  EXPECT_TRUE(near(at(0.0, 1.3), kBlue)) << "the polygon behind the square is hidden";
+  EXPECT_TRUE(near(at(2.0, 2.5), 0xFFFFFFFF)) << "the line";
+  EXPECT_TRUE(near(at(2.0, 2.5 + 3 * 4.0 / kHeight), kGreen)) << "three pixels above the line";
+  EXPECT_TRUE(near(at(0.0, 1.5), 0xFFFF00FF)) << "the marker on top";
+  EXPECT_TRUE(near(at(0.0, 1.5 + 6 * 4.0 / kHeight), kBlue)) << "beside the marker";
+  EXPECT_TRUE(near(at(0.6, 1.5), kBlue)) << "the marker not on top is hidden";
 }
 
 // 100 random pixels, the scene 5,000 km from the origin: each pick is a point of the scene's
