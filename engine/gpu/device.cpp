@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -70,8 +71,18 @@ struct Candidate {
   std::uint32_t queue_family = 0;
 };
 
+bool hasExtension(VkPhysicalDevice device, const char* name) {
+  std::uint32_t count = 0;
+  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr), "vkEnumerateDeviceExtensionProperties");
+  std::vector<VkExtensionProperties> extensions(count);
+  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()),
+        "vkEnumerateDeviceExtensionProperties", VK_INCOMPLETE);
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
 // Why `device` cannot serve (empty when it can); fills the queue family.
-std::string unsuitable(VkPhysicalDevice device, Candidate& candidate) {
+std::string unsuitable(VkPhysicalDevice device, VkSurfaceKHR surface, Candidate& candidate) {
   vkGetPhysicalDeviceProperties(device, &candidate.properties);
   if (candidate.properties.apiVersion < VK_API_VERSION_1_3) return "Vulkan 1.3";
   std::uint32_t count = 0;
@@ -81,9 +92,18 @@ std::string unsuitable(VkPhysicalDevice device, Candidate& candidate) {
   std::optional<std::uint32_t> family;
   for (std::uint32_t i = 0; i < count && !family; ++i) {
     const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    if ((families[i].queueFlags & wanted) == wanted) family = i;
+    VkBool32 presents = VK_TRUE;
+    if (surface != VK_NULL_HANDLE) {
+      check(vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &presents),
+            "vkGetPhysicalDeviceSurfaceSupportKHR");
+    }
+    if ((families[i].queueFlags & wanted) == wanted && presents) family = i;
   }
-  if (!family) return "a graphics and compute queue";
+  if (!family)
+    return surface != VK_NULL_HANDLE ? "a graphics and compute queue that presents to the window"
+                                     : "a graphics and compute queue";
+  if (surface != VK_NULL_HANDLE && !hasExtension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+    return VK_KHR_SWAPCHAIN_EXTENSION_NAME;
   candidate.queue_family = *family;
 
   FeatureChain available;
@@ -121,7 +141,7 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
   for (VkPhysicalDevice device : devices) {
     Candidate candidate;
     candidate.device = device;
-    const std::string lacks = unsuitable(device, candidate);
+    const std::string lacks = unsuitable(device, choice.present_to, candidate);
     const std::string name = candidate.properties.deviceName;
     if (!lacks.empty()) {
       rejected += "; " + name + " lacks " + lacks;
@@ -149,11 +169,16 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
   queue.queueFamilyIndex = queue_family_;
   queue.queueCount = 1;
   queue.pQueuePriorities = &priority;
+  const char* const swapchain_extension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
   VkDeviceCreateInfo create{};
   create.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
   create.pNext = &enabled.base;
   create.queueCreateInfoCount = 1;
   create.pQueueCreateInfos = &queue;
+  if (choice.present_to != VK_NULL_HANDLE) {
+    create.enabledExtensionCount = 1;
+    create.ppEnabledExtensionNames = &swapchain_extension;
+  }
   check(vkCreateDevice(physical_, &create, nullptr, &device_), "vkCreateDevice");
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
   if (instance.validating()) {

@@ -22,6 +22,9 @@ class Instance;
 struct DeviceChoice {
   // Empty: automatic (discrete first). "discrete", "cpu", or a part of the device name.
   std::string prefer;
+  // A window's surface the device must present to (its queue family, VK_KHR_swapchain);
+  // VK_NULL_HANDLE for headless work.
+  VkSurfaceKHR present_to = VK_NULL_HANDLE;
 };
 
 // The choice PLUMB_GPU asks for (automatic when unset).

@@ -51,7 +51,7 @@ InstanceOptions instanceOptionsFromEnvironment() {
 #endif
 }
 
-Instance::Instance(const InstanceOptions& options) {
+Instance::Instance(const InstanceOptions& options, const std::vector<const char*>& extra_extensions) {
   keepCpuDriverLoaded();
   VkApplicationInfo application{};
   application.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
@@ -76,6 +76,8 @@ Instance::Instance(const InstanceOptions& options) {
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
+
+  extensions.insert(extensions.end(), extra_extensions.begin(), extra_extensions.end());
 
   VkInstanceCreateInfo create{};
   create.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;

@@ -20,7 +20,9 @@ InstanceOptions instanceOptionsFromEnvironment();
 
 class Instance {
  public:
-  explicit Instance(const InstanceOptions& options = {});
+  // `extensions`: instance extensions besides validation's, e.g. what the window system needs
+  // for surfaces (glfwGetRequiredInstanceExtensions).
+  explicit Instance(const InstanceOptions& options = {}, const std::vector<const char*>& extensions = {});
   ~Instance();
   Instance(const Instance&) = delete;
   Instance& operator=(const Instance&) = delete;

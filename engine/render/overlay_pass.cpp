@@ -31,10 +31,10 @@ OverlayPass::OverlayPass(const gpu::Device& device, gpu::MemoryAllocator& alloca
       pipeline_(device, kVertexCode, kFragmentCode, sizeof(shader::OverlayPush), RenderTarget::kColourFormat,
                 "overlay") {}
 
-void OverlayPass::record(VkCommandBuffer commands, std::size_t slot, const RenderTarget& target,
+bool OverlayPass::record(VkCommandBuffer commands, std::size_t slot, const RenderTarget& target,
                          const OverlayScene& scene, const view::Camera& camera, float depth_tolerance) {
   const std::vector<shader::OverlayVertex> vertices = overlayVertices(scene, camera.position);
-  if (vertices.empty()) return;
+  if (vertices.empty()) return false;
   const VkDeviceSize bytes = vertices.size() * sizeof(shader::OverlayVertex);
   gpu::Buffer& buffer = vertices_[slot];
   if (!buffer || buffer.size() < bytes) {
@@ -97,6 +97,7 @@ void OverlayPass::record(VkCommandBuffer commands, std::size_t slot, const Rende
                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   vkCmdCopyImageToBuffer(commands, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target.colour.handle(), 1, &region);
+  return true;
 }
 
 }  // namespace plumb::render

@@ -27,8 +27,9 @@ class OverlayPass {
   OverlayPass(const gpu::Device& device, gpu::MemoryAllocator& allocator);
 
   // Records the pass into `commands` for frame slot `slot` (whose previous frame is done). The
-  // target's colour and resolved buffers must be written (compute) before.
-  void record(VkCommandBuffer commands, std::size_t slot, const RenderTarget& target, const OverlayScene& scene,
+  // target's colour and resolved buffers must be written (compute) before. Returns whether it
+  // drew anything: then the colour image holds the result too, in TRANSFER_SRC_OPTIMAL.
+  bool record(VkCommandBuffer commands, std::size_t slot, const RenderTarget& target, const OverlayScene& scene,
               const view::Camera& camera, float depth_tolerance);
 
  private:

@@ -25,6 +25,7 @@
 #include "engine/gpu/deletion_queue.h"
 #include "engine/gpu/device.h"
 #include "engine/gpu/memory.h"
+#include "engine/gpu/swapchain.h"
 #include "engine/gpu/timeline.h"
 #include "engine/gpu/upload_ring.h"
 #include "engine/gpu/vk_check.h"
@@ -83,6 +84,46 @@ std::uint32_t shaderColourMode(ColourMode mode) {
     default:
       return shader::kColourSegment;
   }
+}
+
+// Blits the frame's colour into the swapchain image and leaves that ready to present. The
+// colour image holds the colour already when the overlay pass ran; otherwise it comes from the
+// colour buffer first.
+void recordPresentation(VkCommandBuffer commands, const RenderTarget& target, const gpu::SwapchainImage& present,
+                        bool colour_image_ready) {
+  const VkImage colour = target.colour_image.handle();
+  if (!colour_image_ready) {
+    gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    gpu::imageBarrier(commands, colour, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    const VkBufferImageCopy region{
+        0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {target.width, target.height, 1}};
+    vkCmdCopyBufferToImage(commands, target.colour.handle(), colour, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    gpu::imageBarrier(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+  } else {
+    gpu::imageBarrier(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
+  // The swapchain image: its old content is not needed; the acquire semaphore orders the write.
+  gpu::imageBarrier(commands, present.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                    VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {static_cast<std::int32_t>(target.width), static_cast<std::int32_t>(target.height), 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {static_cast<std::int32_t>(present.extent.width),
+                        static_cast<std::int32_t>(present.extent.height), 1};
+  vkCmdBlitImage(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present.image,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+  gpu::imageBarrier(commands, present.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                    VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE,
+                    VK_ACCESS_2_NONE);
 }
 
 }  // namespace
@@ -221,7 +262,8 @@ GpuNodeCacheStats PointRenderer::gpuNodeStats() const {
   return resources_->gpu_nodes.stats();
 }
 
-FrameStats PointRenderer::render(const view::Camera& camera, const RenderSettings& settings, NodeLoading loading) {
+FrameStats PointRenderer::render(const view::Camera& camera, const RenderSettings& settings, NodeLoading loading,
+                                 const gpu::SwapchainImage* present_to) {
   Resources& r = *resources_;
   view::validateCamera(camera);
   const std::uint64_t value = ++r.submitted;
@@ -356,11 +398,16 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   r.writeTimestamp(commands, value, 1);
   r.resolve.dispatch(commands, resolve, (target.width + group - 1) / group, (target.height + group - 1) / group);
   r.writeTimestamp(commands, value, 2);
-  if (r.overlay && !r.overlay->empty()) {
-    r.overlay_pass.record(commands, value % kFramesInFlight, target, *r.overlay, camera,
-                          settings.overlay_depth_tolerance);
+  const bool overlaid = r.overlay && !r.overlay->empty() &&
+                        r.overlay_pass.record(commands, value % kFramesInFlight, target, *r.overlay, camera,
+                                              settings.overlay_depth_tolerance);
+  if (present_to != nullptr) {
+    recordPresentation(commands, target, *present_to, overlaid);
+    gpu::submit(r.device, commands, r.timeline, value, present_to->acquired,
+                VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, present_to->rendered);
+  } else {
+    gpu::submit(r.device, commands, r.timeline, value);
   }
-  gpu::submit(r.device, commands, r.timeline, value);
   r.last_frame_value = value;
 
   // 5. Evict.

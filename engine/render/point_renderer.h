@@ -27,6 +27,7 @@
 namespace plumb::gpu {
 class Device;
 class MemoryAllocator;
+struct SwapchainImage;
 }  // namespace plumb::gpu
 namespace plumb::lod {
 class NodeCache;
@@ -105,10 +106,13 @@ class PointRenderer {
   PointRenderer(const PointRenderer&) = delete;
   PointRenderer& operator=(const PointRenderer&) = delete;
 
-  // Renders one frame of the camera's viewport size off screen. The camera must be valid.
-  // Throws gpu::DeviceLost when the device is lost, plumb::Error for a corrupt node (kWait).
+  // Renders one frame of the camera's viewport size off screen and, given `present_to` (an
+  // acquired swapchain image), copies it there for presentation: the frame waits for the image's
+  // `acquired` semaphore and signals its `rendered` one; the caller then presents. The camera
+  // must be valid. Throws gpu::DeviceLost when the device is lost, plumb::Error for a corrupt
+  // node (kWait).
   FrameStats render(const view::Camera& camera, const RenderSettings& settings,
-                    NodeLoading loading = NodeLoading::kStream);
+                    NodeLoading loading = NodeLoading::kStream, const gpu::SwapchainImage* present_to = nullptr);
 
   // The labelling ColourMode::kSegment shows (null: none, every point grey). Takes effect from
   // the next frame; nodes whose labels are not uploaded yet show grey meanwhile.

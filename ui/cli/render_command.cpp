@@ -111,7 +111,7 @@ Command addRenderCommand(CLI::App& plumb) {
 
     const gpu::Instance instance(gpu::instanceOptionsFromEnvironment());
     gpu::DeviceChoice choice =
-        options->gpu.empty() ? gpu::deviceChoiceFromEnvironment() : gpu::DeviceChoice{options->gpu};
+        options->gpu.empty() ? gpu::deviceChoiceFromEnvironment() : gpu::DeviceChoice{.prefer = options->gpu};
     io::RgbaImage image;
     render::FrameStats stats;
     double seconds = 0.0;

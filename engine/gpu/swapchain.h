@@ -1,0 +1,69 @@
+#pragma once
+// A window's swapchain that survives resizes, out-of-date surfaces and minimised windows. The
+// window layer (GLFW in ui/) makes the surface and says how large its framebuffer is; this owns
+// the surface from then on.
+//
+// Each frame: acquire() an image (nothing while the window is minimised: skip the frame), record
+// work that waits on its `acquired` semaphore, writes the image and leaves it in
+// PRESENT_SRC_KHR, signalling `rendered`; then present(). A changed size or an out-of-date or
+// suboptimal swapchain is rebuilt at the next acquire, after the device is idle (resizes are
+// rare; the simplicity is worth a stall). Not thread-safe: the render thread owns it.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace plumb::gpu {
+
+class Device;
+class Instance;
+
+struct SwapchainImage {
+  VkImage image;
+  std::uint32_t index;
+  VkExtent2D extent;
+  VkFormat format;
+  VkSemaphore acquired;  // wait on it before writing the image
+  VkSemaphore rendered;  // signal it when the image is ready to present
+};
+
+class Swapchain {
+ public:
+  // `framebuffer_size`: the window's framebuffer in pixels now (0 x 0 when minimised).
+  Swapchain(const Instance& instance, const Device& device, VkSurfaceKHR surface,
+            std::function<VkExtent2D()> framebuffer_size);
+  ~Swapchain();
+  Swapchain(const Swapchain&) = delete;
+  Swapchain& operator=(const Swapchain&) = delete;
+
+  // The next image, or nothing while the window is minimised. Throws DeviceLost, plumb::Error.
+  std::optional<SwapchainImage> acquire();
+  // Queues `image` for presentation after its `rendered` semaphore.
+  void present(const SwapchainImage& image);
+
+  VkExtent2D extent() const { return extent_; }
+  std::uint64_t rebuilds() const { return rebuilds_; }  // since construction, the first build excluded
+
+ private:
+  void build();
+  void destroyImagesAndSemaphores();
+
+  VkInstance instance_;
+  const Device& device_;
+  VkSurfaceKHR surface_;
+  std::function<VkExtent2D()> framebuffer_size_;
+  VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+  VkFormat format_ = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent_{0, 0};
+  std::vector<VkImage> images_;
+  std::vector<VkSemaphore> acquired_;  // a ring, one more than the images
+  std::vector<VkSemaphore> rendered_;  // one per image
+  std::size_t next_acquired_ = 0;
+  bool stale_ = true;  // rebuild before the next acquire
+  std::uint64_t builds_ = 0, rebuilds_ = 0;
+};
+
+}  // namespace plumb::gpu
