@@ -11,9 +11,12 @@ using uint = std::uint32_t;
 using std::uint64_t;
 #endif
 
-// A node's points are drawn in chunks of at most this many, one splat work group each, so that
-// big and small nodes spread evenly over the GPU.
-const uint kChunkPoints = 4096;
+// A node's points are drawn in chunks of at most 2^kChunkBits, one splat work group each, so
+// that big and small nodes spread evenly over the GPU. A point's id in the visibility buffer is
+// its chunk's index << kChunkBits | its index in the chunk: the resolve finds the chunk without
+// a search, and 2^20 chunks of a frame have room for 4 billion points.
+const uint kChunkBits = 12u;
+const uint kChunkPoints = 1u << kChunkBits;
 const uint kSplatGroupSize = 128;
 const uint kResolveGroupSize = 8;  // the resolve runs on 8 x 8 pixel tiles
 
@@ -36,9 +39,7 @@ struct SplatChunk {
   uint64_t points;           // device address of the chunk's first point
   uint64_t labels;           // device address of the chunk's first segment label (uint); 0: none
   uint point_count;          // at most kChunkPoints
-  uint first_id;             // the id of the chunk's first point; ids count on across the frame
-  float elevation_offset;    // the node origin's z above RenderPush's elevation base
-  uint reserved;
+  float elevation_offset;    // the node origin's z above ResolvePush's elevation base
 };
 
 struct SplatPush {

@@ -3,7 +3,7 @@
 //   1. A pixel no point reached but at least kFillNeighbours of its 8 neighbours did takes the
 //      nearest of them: this fills the one-pixel holes between a surface's points without
 //      growing silhouettes. The result goes to `resolved`, which picking and overlays read.
-//   2. The point's id leads to its chunk (binary search on first_id) and its attributes, coloured
+//   2. The point's id leads to its chunk (render_layout.h) and its attributes, coloured
 //      by the colour mode: RGB, intensity (grey), elevation (a ramp) or segment (a palette).
 //   3. Eye-dome lighting (Boucheny 2009, as in Potree): the pixel darkens by how much nearer its
 //      8 neighbours are, in log2 of the depth, which outlines edges and steps without normals.
@@ -38,19 +38,13 @@ float depthOf(uint64_t value) {
   return uintBitsToFloat(uint(value >> 32));
 }
 
-// The chunk holding point `id`: the last whose first_id is at most id.
-uint chunkOf(uint id) {
-  Chunks chunks = Chunks(push.chunks);
-  uint low = 0, high = push.chunk_count - 1;
-  while (low < high) {
-    const uint middle = (low + high + 1) / 2;
-    if (chunks.chunk[middle].first_id <= id) {
-      low = middle;
-    } else {
-      high = middle - 1;
-    }
-  }
-  return low;
+// The neighbours' depth bits alone, as 32-bit loads of the values' upper halves: on lavapipe a
+// load costs the same whatever its width, and the depths are all EDL and hole filling compare.
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VisibilityWords { uint word[]; };
+
+uint depthBitsAt(ivec2 p) {
+  if (p.x < 0 || p.y < 0 || p.x >= int(push.width) || p.y >= int(push.height)) return kEmptyHigh;
+  return VisibilityWords(push.visibility).word[2u * (uint(p.y) * push.width + uint(p.x)) + 1u];
 }
 
 // A perceptual ramp from dark blue through green to yellow (after matplotlib's viridis).
@@ -71,9 +65,11 @@ vec3 segmentColour(uint label) {
 }
 
 vec3 pointColour(uint id) {
-  const SplatChunk chunk = Chunks(push.chunks).chunk[chunkOf(id)];
-  const uint local = id - chunk.first_id;
-  Points points = Points(chunk.points);
+  // Only the members needed: a whole SplatChunk is 104 bytes.
+  Chunks chunks = Chunks(push.chunks);
+  const uint c = id >> kChunkBits;
+  const uint local = id & (kChunkPoints - 1u);
+  Points points = Points(chunks.chunk[c].points);
   const uint w = local * kPointWords;
   switch (push.colour_mode) {
     case kColourRgb: {
@@ -83,11 +79,13 @@ vec3 pointColour(uint id) {
     case kColourIntensity:
       return vec3(float(points.word[w + 4] >> 16) / 65535.0);
     case kColourElevation: {
-      const float z = chunk.elevation_offset + uintBitsToFloat(points.word[w + 2]);
+      const float z = chunks.chunk[c].elevation_offset + uintBitsToFloat(points.word[w + 2]);
       return elevationRamp((z - push.elevation_min) / max(push.elevation_max - push.elevation_min, 1e-6));
     }
-    default:
-      return segmentColour(chunk.labels == 0 ? 0u : Labels(chunk.labels).label[local]);
+    default: {
+      const uint64_t labels = chunks.chunk[c].labels;
+      return segmentColour(labels == 0 ? 0u : Labels(labels).label[local]);
+    }
   }
 }
 
@@ -98,16 +96,22 @@ void main() {
 
   uint64_t value = visibilityAt(p);
   if (value == kEmpty) {
-    int reached = 0;
-    uint64_t nearest = kEmpty;
+    int reached = 0, nearest = -1;
+    uint nearest_bits = kEmptyHigh;
     for (int n = 0; n < 8; ++n) {
-      const uint64_t neighbour = visibilityAt(p + kNeighbours[n]);
-      if (neighbour != kEmpty) {
+      // Background pixels, most of the empty ones, stop here: with none of the first four
+      // neighbours reached, the other four cannot make kFillNeighbours.
+      if (n == 4 && reached == 0) break;
+      const uint bits = depthBitsAt(p + kNeighbours[n]);
+      if (bits != kEmptyHigh) {
         ++reached;
-        nearest = min(nearest, neighbour);
+        if (bits < nearest_bits) {
+          nearest_bits = bits;
+          nearest = n;
+        }
       }
     }
-    if (reached >= kFillNeighbours) value = nearest;
+    if (reached >= kFillNeighbours) value = visibilityAt(p + kNeighbours[nearest]);
   }
   Resolved(push.resolved).pixel[index] = value;
   if (value == kEmpty || push.chunk_count == 0) {
@@ -120,8 +124,8 @@ void main() {
     const float log_depth = log2(depthOf(value));
     float response = 0.0;
     for (int n = 0; n < 8; ++n) {
-      const uint64_t neighbour = visibilityAt(p + kNeighbours[n]);
-      if (neighbour != kEmpty) response += max(0.0, log_depth - log2(depthOf(neighbour)));
+      const uint bits = depthBitsAt(p + kNeighbours[n]);
+      if (bits != kEmptyHigh) response += max(0.0, log_depth - log2(uintBitsToFloat(bits)));
     }
     colour *= exp(-response * 300.0 / 8.0 * push.edl_strength);
   }

@@ -2,7 +2,7 @@
 // The splat (Schuetz et al. 2021, "Rendering point clouds with compute shaders"): one work group
 // per chunk of a node's points; each point is projected and kept per pixel by a 64-bit atomicMin
 // of (view depth << 32 | point id), so the nearest point wins whatever order the GPU runs in,
-// and ties go to the lower id. Depths are positive floats, whose bits order like integers.
+// and ties go to the lower id (ids: render_layout.h). Depths are positive floats, whose bits order like integers.
 #extension GL_EXT_shader_atomic_int64 : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_buffer_reference : require
@@ -20,7 +20,8 @@ layout(buffer_reference, std430, buffer_reference_align = 8) buffer Visibility {
 layout(push_constant) uniform Push { SplatPush push; };
 
 void main() {
-  const SplatChunk chunk = Chunks(push.chunks).chunk[gl_WorkGroupID.x];
+  const uint chunk_index = gl_WorkGroupID.x;
+  const SplatChunk chunk = Chunks(push.chunks).chunk[chunk_index];
   const mat4 clip_from_node = matrixOf(chunk.clip_from_node);
   const vec4 depth_row = vec4(chunk.depth_from_node[0], chunk.depth_from_node[1], chunk.depth_from_node[2],
                               chunk.depth_from_node[3]);
@@ -32,7 +33,8 @@ void main() {
     const vec3 position = PLUMB_POINT_POSITION(points.word, i * kPointWords);
     uint index;
     uint64_t value;
-    if (projectPoint(clip_from_node, depth_row, position, size, push.near_m, chunk.first_id + i, index, value)) {
+    if (projectPoint(clip_from_node, depth_row, position, size, push.near_m, (chunk_index << kChunkBits) | i, index,
+                     value)) {
       atomicMin(visibility.pixel[index], value);
     }
   }

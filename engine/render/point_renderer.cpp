@@ -47,16 +47,15 @@ constexpr std::uint32_t kResolveCode[] =
 #include "shaders/resolve.comp.inc"
     ;
 
-static_assert(sizeof(shader::SplatChunk) == 112, "SplatChunk differs from its std430 layout");
+static_assert(sizeof(shader::SplatChunk) == 104, "SplatChunk differs from its std430 layout");
 static_assert(sizeof(shader::SplatPush) == 32, "SplatPush differs from its std430 layout");
 static_assert(sizeof(shader::ResolvePush) == 64, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
 
 constexpr std::uint64_t kNoTimeout = std::numeric_limits<std::uint64_t>::max();
 
-// Where the ids of a chunk came from, to map a picked id back to its point.
+// Where a chunk's points came from, to map a picked id back to its point.
 struct ChunkOrigin {
-  std::uint32_t first_id;
   lod::CellKey node;
   std::uint32_t first_point;
 };
@@ -341,7 +340,6 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   r.last_chunks.reserve(chunk_count);
 
   const double elevation_base = octree.header().bounds.min[2];
-  std::uint64_t next_id = 0;
   std::size_t c = 0;
   for (const Drawn& d : drawn) {
     const std::array<double, 3> origin = octree.cube().cellMin(d.info->key);
@@ -353,16 +351,13 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       chunk.points = d.node->points.address() + VkDeviceAddress{first} * sizeof(lod::PackedPoint);
       chunk.labels = d.labels == 0 ? 0 : d.labels + VkDeviceAddress{first} * sizeof(std::uint32_t);
       chunk.point_count = std::min(shader::kChunkPoints, d.node->point_count - first);
-      chunk.first_id = static_cast<std::uint32_t>(next_id);
       chunk.elevation_offset = static_cast<float>(origin[2] - elevation_base);
-      chunk.reserved = 0;
-      r.last_chunks.push_back({chunk.first_id, d.info->key, first});
-      next_id += chunk.point_count;
+      r.last_chunks.push_back({d.info->key, first});
     }
     ++stats.nodes_drawn;
     stats.points_drawn += d.node->point_count;
   }
-  assert(next_id < shader::kEmptyHigh && "more points in a frame than 32-bit ids: lower the point budget");
+  assert(chunk_count < (std::size_t{1} << (32 - shader::kChunkBits)) && "more chunks than ids: lower the point budget");
 
   // 4. Record and submit.
   vkCmdFillBuffer(commands, target.visibility.handle(), 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);
@@ -495,12 +490,10 @@ std::optional<PickedPoint> PointRenderer::pick(int x, int y, int radius_px) {
   const auto id = static_cast<std::uint32_t>(best_value);
   const std::uint32_t depth_bits = static_cast<std::uint32_t>(best_value >> 32);
   std::memcpy(&best->depth_m, &depth_bits, sizeof depth_bits);
-  const auto chunk = std::upper_bound(r.last_chunks.begin(), r.last_chunks.end(), id,
-                                      [](std::uint32_t v, const ChunkOrigin& o) { return v < o.first_id; }) -
-                     1;
-  best->node = chunk->node;
-  best->index = chunk->first_point + (id - chunk->first_id);
-  const std::shared_ptr<const lod::NodePoints> points = r.nodes.get(chunk->node);
+  const ChunkOrigin& chunk = r.last_chunks.at(id >> shader::kChunkBits);
+  best->node = chunk.node;
+  best->index = chunk.first_point + (id & (shader::kChunkPoints - 1));
+  const std::shared_ptr<const lod::NodePoints> points = r.nodes.get(chunk.node);
   best->position = points->position(best->index);
   return best;
 }

@@ -49,7 +49,7 @@ enum class ColourMode : std::uint8_t {
 struct RenderSettings {
   ColourMode colour = ColourMode::kAuto;
   bool edl = true;
-  float edl_strength = 1.0f;
+  float edl_strength = 0.35f;  // 1 is Potree's strength; scanner noise darkens dense surfaces then
   std::array<std::uint8_t, 4> background{30, 32, 36, 255};  // RGBA
   SelectionOptions selection;
   // An overlay hides behind the cloud where it lies further than the cloud's point at its pixel

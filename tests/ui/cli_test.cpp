@@ -246,6 +246,17 @@ TEST_F(Cli, RenderWritesTheViewAsAPng) {
   }
   EXPECT_GT(lit, std::size_t{320 * 200 * 4 / 10});
   EXPECT_EQ(entries(), 2u) << "room.ply and top.png only: the temporary octree is gone";
+
+  // A camera file gives the view and, without --size, the image size.
+  plumb::test::writeFile(path("camera.json"),
+                         R"({"format": "plumb-camera", "version": 1, "position": [3.5, 2.5, 1.5],
+                "target": [7.0, 5.0, 1.0], "fov_deg": 70, "viewport": [200, 120]})");
+  const Outcome inside =
+      plumb("render " + path("room.ply") + " --camera " + path("camera.json") + " -o " + path("inside.png"));
+  ASSERT_EQ(inside.exit_code, 0) << inside.err;
+  const plumb::io::RgbaImage view = plumb::io::readPng(path("inside.png"));
+  EXPECT_EQ(view.width, 200);
+  EXPECT_EQ(view.height, 120);
 }
 
 TEST_F(Cli, RenderRejectsBadArgumentsAndWritesNothing) {
