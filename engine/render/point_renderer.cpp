@@ -5,7 +5,8 @@
 //      NodeLoading::kWait, load them), as far as the upload ring has room.
 //   3. Write the chunk table: per chunk of each drawn node its clip and depth transforms
 //      (splat_transform.h).
-//   4. Record: clear the visibility buffer, splat, resolve; submit to signal the frame's value.
+//   4. Record: clear the visibility buffer, splat, resolve, draw the overlays, and blit into the
+//      swapchain image when there is one; submit to signal the frame's value.
 //   5. Evict resident nodes beyond the GPU budget.
 
 #include "engine/render/point_renderer.h"

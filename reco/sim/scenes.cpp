@@ -25,7 +25,7 @@ Palette standardPalette(SceneBuilder& b) {
 }  // namespace
 
 const std::vector<std::string>& sceneNames() {
-  static const std::vector<std::string> names{"room", "office", "stairs", "facade"};
+  static const std::vector<std::string> names{"room", "office", "stairs", "facade", "hall"};
   return names;
 }
 
@@ -34,7 +34,8 @@ Scene makeScene(std::string_view name) {
   if (name == "office") return officeScene();
   if (name == "stairs") return stairsScene();
   if (name == "facade") return facadeScene();
-  throw Error("unknown scene '" + std::string(name) + "': choose room, office, stairs or facade");
+  if (name == "hall") return hallScene();
+  throw Error("unknown scene '" + std::string(name) + "': choose room, office, stairs, facade or hall");
 }
 
 // A 7 x 5 x 2.5 m room: a window recess in the y+ wall, a recessed door in the x- wall, a sofa,
@@ -262,6 +263,16 @@ Scene facadeScene() {
   Scene scene = std::move(b).build();
   scene.default_station_count = 3;
   return scene;
+}
+
+// A bare 6 x 8 x 3 m hall with one station in the middle: the speed benchmark's scene, whose
+// y = 0 wall is a plain 6 x 3 m wall 4 m from the scanner.
+Scene hallScene() {
+  SceneBuilder b("hall");
+  const Palette p = standardPalette(b);
+  b.interior({{0, 0, 0}, {6, 8, 3}}, "hall", p.wall, p.floor, p.ceiling);
+  b.station({3.0, 4.0, 1.5});
+  return std::move(b).build();
 }
 
 }  // namespace plumb::reco::sim

@@ -1,5 +1,5 @@
 #pragma once
-// The catalogue of simulated scenes: room, office, stairs, facade. docs/simulator.md describes
+// The catalogue of simulated scenes: room, office, stairs, facade, hall. docs/simulator.md describes
 // each with its dimensions and stations.
 
 #include <string>
@@ -20,5 +20,6 @@ Scene roomScene();
 Scene officeScene();
 Scene stairsScene();
 Scene facadeScene();
+Scene hallScene();
 
 }  // namespace plumb::reco::sim

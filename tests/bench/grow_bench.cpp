@@ -1,7 +1,7 @@
 // Region growing speed (docs/benchmarks.md). Prints, asserts nothing.
 //
-//   plumb_bench_grow DIR   simulates the room at 10 and 100 million points in DIR, builds their
-//                          octrees, and clicks the middle of the 7 x 2.5 m wall y = 0 from 3 m
+//   plumb_bench_grow DIR   simulates the hall at 10 and 100 million points in DIR, builds their
+//                          octrees, and clicks the middle of its 6 x 3 m wall y = 0 from 3 m
 //                          (medium detail): time to the first snapshot and to convergence with
 //                          an empty node cache (cold) and again with the nodes cached (warm)
 
@@ -40,27 +40,28 @@ int main(int argc, char** argv) {
   }
   const std::filesystem::path directory = argv[1];
   const Eigen::Vector3d offset(512000, 5403000, 250);
-  // The middle of the room's y = 0 wall (7 m long, 2.5 m high), in world coordinates.
-  const Eigen::Vector3d click = offset + Eigen::Vector3d(3.5, 0.0, 1.25);
+  // The middle of the hall's y = 0 wall (6 m long, 3 m high), in world coordinates.
+  const Eigen::Vector3d click = offset + Eigen::Vector3d(3.0, 0.0, 1.5);
   for (const std::uint64_t points : {10'000'000ull, 100'000'000ull}) {
     reco::sim::SimulationRequest request;
-    request.scene = "room";
+    request.scene = "hall";
     request.target_points = points;
     request.offset = offset;
-    request.ply_path = (directory / "room.ply").string();
+    request.ply_path = (directory / "hall.ply").string();
     reco::sim::simulate(request);
     lod::BuildOptions build;
     build.sources = lod::fileSources({request.ply_path});
-    build.output = (directory / "room.plumb").string();
+    build.output = (directory / "hall.plumb").string();
     const lod::BuildReport report = lod::buildOctree(build);
     std::filesystem::remove(request.ply_path);
 
     const auto octree = lod::Octree::open(build.output);
     const reco::GrowParameters parameters = reco::parametersForView(reco::viewFromDistance(click, 3.0));
-    std::printf("room, %llu points (%llu nodes), click on the middle of the 7 x 2.5 m wall from 3 m "
-                "(r_s %.2f m, spacing %.3f m):\n",
-                static_cast<unsigned long long>(report.points), static_cast<unsigned long long>(report.nodes),
-                parameters.seed_radius_m, parameters.spacing_m);
+    std::printf(
+        "hall, %llu points (%llu nodes), click on the middle of the 6 x 3 m wall from 3 m "
+        "(r_s %.2f m, spacing %.3f m):\n",
+        static_cast<unsigned long long>(report.points), static_cast<unsigned long long>(report.nodes),
+        parameters.seed_radius_m, parameters.spacing_m);
     lod::NodeCache cache(octree, std::size_t{1} << 30);
     growOnce(cache, parameters, "cold");
     growOnce(cache, parameters, "warm");
