@@ -39,6 +39,17 @@ std::shared_ptr<const lod::Octree> buildGenerated(const test::TempDirectory& dir
   return lod::Octree::open(options.output);
 }
 
+// Whether a segment holds its patch's points: all but the noise tail beyond the inlier threshold
+// (noise_sigmas x the RMS of the patches' Gaussian noise turns away 2.4 % at 2.25), give or take
+// 3 % at the borders, and never more than 3 % over (which would be creeping onto a neighbour).
+::testing::AssertionResult holdsPatch(std::uint64_t segment_points, std::uint64_t patch_points) {
+  const double tail = std::erfc(GrowOptions{}.noise_sigmas / std::sqrt(2.0));
+  const double share = static_cast<double>(segment_points) / static_cast<double>(patch_points);
+  if (share >= 1.0 - tail - 0.03 && share <= 1.03) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << segment_points << " of the patch's " << patch_points << " points ("
+                                       << 100.0 * share << " %; the threshold's tail is " << 100.0 * tail << " %)";
+}
+
 std::shared_ptr<const lod::Octree> buildPatches(const test::TempDirectory& dir, const std::vector<Patch>& patches,
                                                 std::uint64_t count) {
   return buildGenerated(dir, "patches.plumb", count, [patches](std::uint64_t i) {
@@ -96,15 +107,13 @@ TEST(RegionGrower, TwoPlanesAtRightAnglesGrowApart) {
     ASSERT_TRUE(segment.plane.valid);
     if (angleDeg(segment.plane.normal, Eigen::Vector3d::UnitZ()) < 0.2) {
       ++floors;
-      EXPECT_NEAR(static_cast<double>(segment.points), static_cast<double>(floor_points),
-                  0.03 * static_cast<double>(floor_points));
+      EXPECT_TRUE(holdsPatch(segment.points, floor_points));
       EXPECT_NEAR(segment.plane.signedDistance(kUtm), 0.0, 0.0005);
       ASSERT_TRUE(segment.outline);
       EXPECT_NEAR(segment.outline->shape.area_m2, 16.0, kAreaTolerance * 16.0);
     } else if (angleDeg(segment.plane.normal, Eigen::Vector3d::UnitX()) < 0.2) {
       ++walls;
-      EXPECT_NEAR(static_cast<double>(segment.points), static_cast<double>(wall_points),
-                  0.03 * static_cast<double>(wall_points));
+      EXPECT_TRUE(holdsPatch(segment.points, wall_points));
       ASSERT_TRUE(segment.outline);
       EXPECT_NEAR(segment.outline->shape.area_m2, 10.0, kAreaTolerance * 10.0);
     }
@@ -157,7 +166,7 @@ TEST(RegionGrower, TheTwoFacesOfAThickWallStayApart) {
     EXPECT_LT(angleDeg(segment.plane.normal, Eigen::Vector3d::UnitX()), 0.2);
     offsets.push_back(std::abs(segment.plane.signedDistance(kUtm)));
     const std::uint64_t face = pointsOfPatchAtLevel(cache, two.level, offsets.back() < 0.05 ? 0 : 1);
-    EXPECT_NEAR(static_cast<double>(segment.points), static_cast<double>(face), 0.03 * static_cast<double>(face));
+    EXPECT_TRUE(holdsPatch(segment.points, face));
   }
   std::sort(offsets.begin(), offsets.end());
   EXPECT_NEAR(offsets[0], 0.0, 0.0005);
@@ -169,8 +178,7 @@ TEST(RegionGrower, TheTwoFacesOfAThickWallStayApart) {
   ASSERT_EQ(single.segments.size(), 1u);
   EXPECT_NEAR(single.segments[0].plane.signedDistance(kUtm), 0.0, 0.0005);
   const std::uint64_t face = pointsOfPatchAtLevel(cache, single.level, 0);
-  EXPECT_NEAR(static_cast<double>(single.segments[0].points), static_cast<double>(face),
-              0.03 * static_cast<double>(face));
+  EXPECT_TRUE(holdsPatch(single.segments[0].points, face));
 }
 
 //   +---------------------+
@@ -311,8 +319,7 @@ TEST(RegionGrower, AStairTreadDoesNotCreepUpItsRisers) {
               static_cast<unsigned long long>(tread_points), static_cast<unsigned long long>(by_patch[1]),
               static_cast<unsigned long long>(by_patch[3]),
               1e3 * tread.plane.signedDistance(kUtm + Eigen::Vector3d(0, 0, 0.18)));
-  EXPECT_NEAR(static_cast<double>(by_patch[2]), static_cast<double>(tread_points),
-              0.03 * static_cast<double>(tread_points));
+  EXPECT_TRUE(holdsPatch(by_patch[2], tread_points));
   // At most the few millimetres of each riser that the noise cannot tell from the tread.
   EXPECT_LT(by_patch[1] + by_patch[3], tread_points / 25);
   EXPECT_EQ(by_patch[0] + by_patch[4], 0u);

@@ -150,6 +150,31 @@ TEST_F(PointRendererTest, EyeDomeLightingOutlinesTheSquareAndLeavesFlatWallsAlon
   }
 }
 
+// Intensity is grey by the points' intensity (30,000 of 65,535 here); elevation runs the ramp
+// from the cloud's lowest point (z = 0, dark violet) to its highest (z = 3 m, yellow).
+TEST_F(PointRendererTest, IntensityIsGreyAndElevationFollowsTheRamp) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  RenderSettings settings = flat();
+  settings.colour = ColourMode::kIntensity;
+  renderer.renderComplete(camera, settings);
+  io::RgbaImage image = renderer.readColour();
+  const auto low = test::frontPixel(camera, -2.0, 0.05), high = test::frontPixel(camera, 2.0, 2.95);
+  EXPECT_TRUE(near(image.pixel(low[0], low[1]), 0xFF757575)) << "30000 / 65535 of 255 is 117";
+  EXPECT_TRUE(near(image.pixel(high[0], high[1]), 0xFF757575));
+
+  settings.colour = ColourMode::kElevation;
+  renderer.renderComplete(camera, settings);
+  image = renderer.readColour();
+  const auto bottom = channels(image.pixel(low[0], low[1])), top = channels(image.pixel(high[0], high[1]));
+  EXPECT_GT(bottom[2], bottom[1]) << "violet: more blue than green at the bottom";
+  EXPECT_LT(bottom[0] + bottom[1] + bottom[2], 300);
+  EXPECT_GT(top[0], 200) << "yellow at the top";
+  EXPECT_GT(top[1], 180);
+  EXPECT_LT(top[2], 120);
+}
+
 // Segment colours: labels by the points' own colour (red wall 1, green wall 2, the square none)
 // give each wall its own colour and leave the square grey; a new labelling replaces the old.
 TEST_F(PointRendererTest, SegmentColoursFollowTheLabels) {
