@@ -23,10 +23,10 @@ void main() {
   const vec4 depth_row = vec4(push.depth_from_points[0], push.depth_from_points[1], push.depth_from_points[2],
                               push.depth_from_points[3]);
   Points points = Points(push.points);
-  uint index;
+  uvec2 pixel;
   uint64_t value;
   if (projectPoint(matrixOf(push.clip_from_points), depth_row, PLUMB_POINT_POSITION(points.word, i * kPointWords),
-                   uvec2(push.width, push.height), push.near_m, i, index, value)) {
-    atomicMin(Visibility(push.visibility).pixel[index], value);
+                   uvec2(push.width, push.height), push.near_m, i, pixel, value)) {
+    atomicMin(Visibility(push.visibility).pixel[pixel.y * push.width + pixel.x], value);
   }
 }

@@ -1,18 +1,18 @@
 // Projection helpers of the splat (splat.comp.glsl, bare_splat.comp.glsl) and the overlays. projectPoint:
-// whether the point (relative to its origin) lands on a pixel in front of the near plane, and
-// its visibility value there (view depth bits << 32 | id). Needs GL_EXT_shader_explicit_arithmetic_types_int64.
+// whether the point (relative to its origin) lands on a pixel in front of the near plane, that
+// pixel, and its visibility value there (view depth bits << 32 | id). Needs GL_EXT_shader_explicit_arithmetic_types_int64.
 #ifndef PLUMB_SHADERS_PROJECT_POINT_GLSL
 #define PLUMB_SHADERS_PROJECT_POINT_GLSL
 
 bool projectPoint(const mat4 clip_from_origin, const vec4 depth_row, const vec3 position, const uvec2 size,
-                  const float near_m, const uint id, out uint pixel_index, out uint64_t value) {
+                  const float near_m, const uint id, out uvec2 pixel_at, out uint64_t value) {
   const vec4 p = vec4(position, 1.0);
   const float depth = dot(depth_row, p);
   if (!(depth >= near_m)) return false;  // behind the near plane (or NaN)
   const vec4 clip = clip_from_origin * p;
   const vec2 pixel = clip.xy / clip.w;
   if (!(all(greaterThanEqual(pixel, vec2(0.0))) && all(lessThan(pixel, vec2(size))))) return false;
-  pixel_index = uint(pixel.y) * size.x + uint(pixel.x);
+  pixel_at = uvec2(pixel);
   value = (uint64_t(floatBitsToUint(depth)) << 32) | uint64_t(id);
   return true;
 }

@@ -40,7 +40,13 @@ struct SplatChunk {
   uint64_t labels;           // device address of the chunk's first segment label (uint); 0: none
   uint point_count;          // at most kChunkPoints
   float elevation_offset;    // the node origin's z above ResolvePush's elevation base
+  uint point_size_px;        // each point covers a square of this side (1 to kMaxPointSize)
+  uint reserved;
 };
+
+// Points of a node whose children are not drawn, where they lie more than a pixel apart on
+// screen, are splatted as squares of about their spacing, so that surfaces stay closed.
+const uint kMaxPointSize = 4u;
 
 struct SplatPush {
   uint64_t chunks;      // SplatChunk[chunk_count]

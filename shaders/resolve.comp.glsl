@@ -65,7 +65,7 @@ vec3 segmentColour(uint label) {
 }
 
 vec3 pointColour(uint id) {
-  // Only the members needed: a whole SplatChunk is 104 bytes.
+  // Only the members needed: a whole SplatChunk is 112 bytes.
   Chunks chunks = Chunks(push.chunks);
   const uint c = id >> kChunkBits;
   const uint local = id & (kChunkPoints - 1u);

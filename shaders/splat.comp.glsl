@@ -31,11 +31,21 @@ void main() {
 
   for (uint i = gl_LocalInvocationID.x; i < chunk.point_count; i += kSplatGroupSize) {
     const vec3 position = PLUMB_POINT_POSITION(points.word, i * kPointWords);
-    uint index;
+    uvec2 pixel;
     uint64_t value;
-    if (projectPoint(clip_from_node, depth_row, position, size, push.near_m, (chunk_index << kChunkBits) | i, index,
-                     value)) {
-      atomicMin(visibility.pixel[index], value);
+    if (!projectPoint(clip_from_node, depth_row, position, size, push.near_m, (chunk_index << kChunkBits) | i, pixel,
+                      value)) {
+      continue;
+    }
+    if (chunk.point_size_px <= 1u) {
+      atomicMin(visibility.pixel[pixel.y * push.width + pixel.x], value);
+      continue;
+    }
+    // A square around the pixel, clipped to the screen.
+    const uvec2 low = uvec2(max(ivec2(pixel) - int(chunk.point_size_px / 2u), ivec2(0)));
+    const uvec2 high = min(low + chunk.point_size_px, size);
+    for (uint y = low.y; y < high.y; ++y) {
+      for (uint x = low.x; x < high.x; ++x) atomicMin(visibility.pixel[y * push.width + x], value);
     }
   }
 }

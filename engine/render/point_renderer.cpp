@@ -18,6 +18,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <unordered_set>
 
 #include "engine/core/error.h"
 #include "engine/gpu/buffer.h"
@@ -48,7 +49,7 @@ constexpr std::uint32_t kResolveCode[] =
 #include "shaders/resolve.comp.inc"
     ;
 
-static_assert(sizeof(shader::SplatChunk) == 104, "SplatChunk differs from its std430 layout");
+static_assert(sizeof(shader::SplatChunk) == 112, "SplatChunk differs from its std430 layout");
 static_assert(sizeof(shader::SplatPush) == 32, "SplatPush differs from its std430 layout");
 static_assert(sizeof(shader::ResolvePush) == 64, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
@@ -302,10 +303,12 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
     const lod::NodeInfo* info;
     const GpuNode* node;
     VkDeviceAddress labels;  // 0: none
+    double spacing_px;
   };
   std::vector<Drawn> drawn;
   drawn.reserve(selection.nodes.size());
-  for (const lod::NodeInfo* info : selection.nodes) {
+  for (std::size_t n = 0; n < selection.nodes.size(); ++n) {
+    const lod::NodeInfo* info = selection.nodes[n];
     const GpuNode* node = r.gpu_nodes.use(info->key, value);
     if (node == nullptr) {
       const std::shared_ptr<const lod::NodePoints> points =
@@ -328,7 +331,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
               : r.gpu_nodes.labels(info->key, found->second, labels->version, commands, r.ring, value, r.deletions);
       if (buffer != nullptr) label_address = buffer->address();
     }
-    drawn.push_back({info, node, label_address});
+    drawn.push_back({info, node, label_address, selection.spacing_px[n]});
   }
   r.ring.close(value);
 
@@ -341,8 +344,19 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   r.last_chunks.reserve(chunk_count);
 
   const double elevation_base = octree.header().bounds.min[2];
+  // Where no child of a node is drawn, its points are the finest there: splat them as squares
+  // of their spacing on screen.
+  std::unordered_set<lod::CellKey, lod::CellKeyHash> drawn_keys;
+  for (const Drawn& d : drawn) drawn_keys.insert(d.info->key);
+  auto pointSize = [&](const Drawn& d) {
+    for (int octant = 0; octant < 8; ++octant) {
+      if ((d.info->child_mask & (1u << octant)) && drawn_keys.count(d.info->key.child(octant))) return 1u;
+    }
+    return static_cast<std::uint32_t>(std::clamp<long>(std::lround(d.spacing_px), 1, shader::kMaxPointSize));
+  };
   std::size_t c = 0;
   for (const Drawn& d : drawn) {
+    const std::uint32_t point_size = pointSize(d);
     const std::array<double, 3> origin = octree.cube().cellMin(d.info->key);
     const SplatTransform transform = splatTransform(camera, origin);
     for (std::uint32_t first = 0; first < d.node->point_count; first += shader::kChunkPoints) {
@@ -353,6 +367,8 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       chunk.labels = d.labels == 0 ? 0 : d.labels + VkDeviceAddress{first} * sizeof(std::uint32_t);
       chunk.point_count = std::min(shader::kChunkPoints, d.node->point_count - first);
       chunk.elevation_offset = static_cast<float>(origin[2] - elevation_base);
+      chunk.point_size_px = point_size;
+      chunk.reserved = 0;
       r.last_chunks.push_back({d.info->key, first});
     }
     ++stats.nodes_drawn;

@@ -150,6 +150,31 @@ TEST_F(PointRendererTest, EyeDomeLightingOutlinesTheSquareAndLeavesFlatWallsAlon
   }
 }
 
+// Close up, the walls' 2 cm grid lies 1.8 pixels apart on screen (1.1 cm pixels): the finest
+// nodes are splatted as 2 x 2 squares and every pixel of the walls is still covered.
+TEST_F(PointRendererTest, CloseUpSurfacesStayClosed) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  constexpr int kCloseWidth = 480, kCloseHeight = 360;
+  const view::Camera camera = test::wallSceneFront(kCloseWidth, kCloseHeight);
+  const FrameStats stats = renderer.renderComplete(camera, flat());
+  EXPECT_EQ(stats.points_drawn, test::wallScenePoints());
+  const io::RgbaImage image = renderer.readColour();
+  keepForInspection(image, "close_up");
+  const std::uint32_t background = 0xFF24201E;
+  int empty = 0;
+  for (int row = 0; row < kCloseHeight; ++row) {
+    for (int column = 0; column < kCloseWidth; ++column) {
+      const double z = 1.5 + (0.5 * kCloseHeight - row - 0.5) * 4.0 / kCloseHeight;
+      const double x = (column + 0.5 - 0.5 * kCloseWidth) * 4.0 / kCloseHeight;
+      if (z > 0.05 && z < 2.93 && x > -3.9 && x < 3.9 && image.pixel(column, row) == background) ++empty;
+    }
+  }
+  EXPECT_EQ(empty, 0);
+  const auto [column, row] = test::frontPixel(camera, -0.3, 0.5);
+  EXPECT_TRUE(near(image.pixel(column, row), kRed));
+}
+
 // Intensity is grey by the points' intensity (30,000 of 65,535 here); elevation runs the ramp
 // from the cloud's lowest point (z = 0, dark violet) to its highest (z = 3 m, yellow).
 TEST_F(PointRendererTest, IntensityIsGreyAndElevationFollowsTheRamp) {
