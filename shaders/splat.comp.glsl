@@ -29,21 +29,30 @@ void main() {
   Visibility visibility = Visibility(push.visibility);
   const uvec2 size = uvec2(push.width, push.height);
 
+  const uint first_id = chunk_index << kChunkBits;
+  if (chunk.point_size_px <= 1u) {
+    // Apart from the finest nodes close up, every chunk: kept tight, without the square's loop.
+    for (uint i = gl_LocalInvocationID.x; i < chunk.point_count; i += kSplatGroupSize) {
+      uvec2 pixel;
+      uint64_t value;
+      if (projectPoint(clip_from_node, depth_row, PLUMB_POINT_POSITION(points.word, i * kPointWords), size,
+                       push.near_m, first_id | i, pixel, value)) {
+        atomicMin(visibility.pixel[pixel.y * push.width + pixel.x], value);
+      }
+    }
+    return;
+  }
+  // A square around each point's pixel, clipped to the screen.
+  const uint side = chunk.point_size_px;
   for (uint i = gl_LocalInvocationID.x; i < chunk.point_count; i += kSplatGroupSize) {
-    const vec3 position = PLUMB_POINT_POSITION(points.word, i * kPointWords);
     uvec2 pixel;
     uint64_t value;
-    if (!projectPoint(clip_from_node, depth_row, position, size, push.near_m, (chunk_index << kChunkBits) | i, pixel,
-                      value)) {
+    if (!projectPoint(clip_from_node, depth_row, PLUMB_POINT_POSITION(points.word, i * kPointWords), size,
+                      push.near_m, first_id | i, pixel, value)) {
       continue;
     }
-    if (chunk.point_size_px <= 1u) {
-      atomicMin(visibility.pixel[pixel.y * push.width + pixel.x], value);
-      continue;
-    }
-    // A square around the pixel, clipped to the screen.
-    const uvec2 low = uvec2(max(ivec2(pixel) - int(chunk.point_size_px / 2u), ivec2(0)));
-    const uvec2 high = min(low + chunk.point_size_px, size);
+    const uvec2 low = uvec2(max(ivec2(pixel) - int(side / 2u), ivec2(0)));
+    const uvec2 high = min(low + side, size);
     for (uint y = low.y; y < high.y; ++y) {
       for (uint x = low.x; x < high.x; ++x) atomicMin(visibility.pixel[y * push.width + x], value);
     }

@@ -349,6 +349,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   std::unordered_set<lod::CellKey, lod::CellKeyHash> drawn_keys;
   for (const Drawn& d : drawn) drawn_keys.insert(d.info->key);
   auto pointSize = [&](const Drawn& d) {
+    if (!settings.adaptive_point_size) return 1u;
     for (int octant = 0; octant < 8; ++octant) {
       if ((d.info->child_mask & (1u << octant)) && drawn_keys.count(d.info->key.child(octant))) return 1u;
     }

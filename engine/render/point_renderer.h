@@ -52,6 +52,9 @@ struct RenderSettings {
   float edl_strength = 0.35f;  // 1 is Potree's strength; scanner noise darkens dense surfaces then
   std::array<std::uint8_t, 4> background{30, 32, 36, 255};  // RGBA
   SelectionOptions selection;
+  // Points of a node with no drawn child cover a square of their spacing on screen (1 to 4 px);
+  // off: every point is one pixel (the bare splat's work, for the benchmark).
+  bool adaptive_point_size = true;
   // An overlay hides behind the cloud where it lies further than the cloud's point at its pixel
   // by more than this fraction of the depth plus 1 cm (scanner noise, polygons fitted to it).
   float overlay_depth_tolerance = 0.005f;

@@ -6,9 +6,10 @@
 // default) in DIR and looks at it from the standard iso view at WxH (1920x1080). For each
 // budget (1, 2 and 5 million points by default), once every node is on the GPU:
 //   - the frame time: render() to the GPU's end of the frame, the median of F frames;
-//   - the splat and the resolve in GPU time (timestamps), the splat in points per second;
+//   - the splat and the resolve in GPU time (timestamps);
+//   - the splat again with one-pixel points (no adaptive point size), in points per second;
 //   - the bare splat (shaders/bare_splat.comp.glsl) of the same points, as one flat array with
-//     one transform, in points per second, and the renderer's splat as a share of it.
+//     one transform, in points per second, and the one-pixel splat as a share of it.
 // The device is PLUMB_GPU's choice: the GPU where there is one, lavapipe otherwise.
 
 #include <CLI/App.hpp>
@@ -175,8 +176,8 @@ int main(int argc, char** argv) {
     std::printf("hall of %llu points (octree %.1f s, %llu nodes), %d x %d, iso view, on %s\n",
                 static_cast<unsigned long long>(point_count), build_s,
                 static_cast<unsigned long long>(octree->header().node_count), width, height, device.name().c_str());
-    std::printf("%10s %10s %10s %10s %10s %12s %12s %7s\n", "budget", "points", "frame_ms", "splat_ms", "resolve_ms",
-                "splat_Mpt/s", "bare_Mpt/s", "share");
+    std::printf("%10s %10s %10s %10s %10s %10s %12s %12s %7s\n", "budget", "points", "frame_ms", "splat_ms",
+                "resolve_ms", "1px_splat", "1px_Mpt/s", "bare_Mpt/s", "share");
     for (const std::uint64_t budget : budgets) {
       lod::NodeCache nodes(octree, std::size_t{4} << 30);
       render::RendererOptions options;
@@ -186,15 +187,25 @@ int main(int argc, char** argv) {
       render::RenderSettings settings;
       settings.selection.point_budget = budget;
       render::FrameStats stats = renderer.renderComplete(camera, settings);
-      std::vector<double> frame_ms, splat_ms, resolve_ms;
-      for (int frame = 0; frame < frames + 1; ++frame) {  // the first frame warms up
-        const auto start = std::chrono::steady_clock::now();
-        stats = renderer.render(camera, settings);
-        const render::GpuTimings timings = *renderer.gpuTimings();  // waits for the frame's end
-        if (frame == 0) continue;
-        frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-        splat_ms.push_back(timings.splat_ms);
-        resolve_ms.push_back(timings.resolve_ms);
+      // Frames as the viewer draws them; then the splat alone with one-pixel points, the bare
+      // kernel's work, for the comparison.
+      std::vector<double> frame_ms, splat_ms, resolve_ms, one_pixel_splat_ms;
+      for (const bool adaptive : {true, false}) {
+        settings.adaptive_point_size = adaptive;
+        for (int frame = 0; frame < frames + 1; ++frame) {  // the first frame warms up
+          const auto start = std::chrono::steady_clock::now();
+          stats = renderer.render(camera, settings);
+          const render::GpuTimings timings = *renderer.gpuTimings();  // waits for the frame's end
+          if (frame == 0) continue;
+          if (!adaptive) {
+            one_pixel_splat_ms.push_back(timings.splat_ms);
+            continue;
+          }
+          frame_ms.push_back(
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+          splat_ms.push_back(timings.splat_ms);
+          resolve_ms.push_back(timings.resolve_ms);
+        }
       }
 
       // The same points as one flat array relative to the cube's corner.
@@ -213,12 +224,13 @@ int main(int argc, char** argv) {
         }
       }
       const double bare_ms = bareSplatMs(device, allocator, flat, camera, origin, frames);
-      const double splat = median(splat_ms);
+      const double one_pixel = median(one_pixel_splat_ms);
       const double drawn = static_cast<double>(stats.points_drawn);
-      std::printf("%10llu %10llu %10.2f %10.2f %10.2f %12.1f %12.1f %6.0f%%\n", static_cast<unsigned long long>(budget),
-                  static_cast<unsigned long long>(stats.points_drawn), median(frame_ms), splat, median(resolve_ms),
-                  drawn / splat / 1e3, static_cast<double>(flat.size()) / bare_ms / 1e3,
-                  100.0 * (drawn / splat) / (static_cast<double>(flat.size()) / bare_ms));
+      std::printf("%10llu %10llu %10.2f %10.2f %10.2f %10.2f %12.1f %12.1f %6.0f%%\n",
+                  static_cast<unsigned long long>(budget), static_cast<unsigned long long>(stats.points_drawn),
+                  median(frame_ms), median(splat_ms), median(resolve_ms), one_pixel, drawn / one_pixel / 1e3,
+                  static_cast<double>(flat.size()) / bare_ms / 1e3,
+                  100.0 * (drawn / one_pixel) / (static_cast<double>(flat.size()) / bare_ms));
     }
     for (const std::string& message : instance.validationMessages())
       std::fprintf(stderr, "validation: %s\n", message.c_str());
