@@ -14,6 +14,11 @@ namespace plumb::render {
 
 using Rgba = std::array<std::uint8_t, 4>;  // straight alpha
 
+// As the shaders read a colour: R in the lowest byte.
+inline std::uint32_t packRgba(const Rgba& c) {
+  return std::uint32_t{c[0]} | std::uint32_t{c[1]} << 8 | std::uint32_t{c[2]} << 16 | std::uint32_t{c[3]} << 24;
+}
+
 struct OverlayScene {
   struct Polygon {
     std::vector<Eigen::Vector3d> triangles;  // three corners per triangle

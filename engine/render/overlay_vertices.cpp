@@ -3,10 +3,6 @@
 namespace plumb::render {
 namespace {
 
-std::uint32_t packed(const Rgba& c) {
-  return std::uint32_t{c[0]} | std::uint32_t{c[1]} << 8 | std::uint32_t{c[2]} << 16 | std::uint32_t{c[3]} << 24;
-}
-
 shader::OverlayVertex vertex(const Eigen::Vector3d& position, const Eigen::Vector3d& eye, std::uint32_t colour,
                              std::uint32_t flags) {
   shader::OverlayVertex v{};
@@ -27,7 +23,7 @@ constexpr float kQuad[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, -1}, {1, 1}, {-1,
 std::vector<shader::OverlayVertex> overlayVertices(const OverlayScene& scene, const Eigen::Vector3d& eye) {
   std::vector<shader::OverlayVertex> vertices;
   for (const OverlayScene::Polygon& polygon : scene.polygons) {
-    const std::uint32_t colour = packed(polygon.colour);
+    const std::uint32_t colour = packRgba(polygon.colour);
     for (std::size_t i = 0; i + 2 < polygon.triangles.size(); i += 3) {
       for (std::size_t k = 0; k < 3; ++k) vertices.push_back(vertex(polygon.triangles[i + k], eye, colour, 0));
     }
@@ -39,7 +35,7 @@ std::vector<shader::OverlayVertex> overlayVertices(const OverlayScene& scene, co
       // corner[0]: which end (-1: a, +1: b); corner[1]: which side. Seen from b, a's left is
       // b's right: the side flips with the end so that the quad does not twist.
       const bool at_b = corner[0] > 0;
-      shader::OverlayVertex v = vertex(at_b ? line.b : line.a, eye, packed(line.colour), flags);
+      shader::OverlayVertex v = vertex(at_b ? line.b : line.a, eye, packRgba(line.colour), flags);
       const Eigen::Vector3f& other = at_b ? a : b;
       v.other[0] = other.x();
       v.other[1] = other.y();
@@ -51,7 +47,7 @@ std::vector<shader::OverlayVertex> overlayVertices(const OverlayScene& scene, co
   for (const OverlayScene::Marker& marker : scene.markers) {
     const std::uint32_t flags = shader::kOverlayMarker | (marker.on_top ? shader::kOverlayOnTop : 0u);
     for (const auto& corner : kQuad) {
-      shader::OverlayVertex v = vertex(marker.position, eye, packed(marker.colour), flags);
+      shader::OverlayVertex v = vertex(marker.position, eye, packRgba(marker.colour), flags);
       v.offset_px[0] = 0.5f * marker.size_px * corner[0];
       v.offset_px[1] = 0.5f * marker.size_px * corner[1];
       vertices.push_back(v);

@@ -62,10 +62,6 @@ struct ChunkOrigin {
   std::uint32_t first_point;
 };
 
-std::uint32_t packRgba(const std::array<std::uint8_t, 4>& c) {
-  return std::uint32_t{c[0]} | std::uint32_t{c[1]} << 8 | std::uint32_t{c[2]} << 16 | std::uint32_t{c[3]} << 24;
-}
-
 // kAuto becomes what the cloud has: colour, else intensity, else elevation.
 ColourMode effectiveColourMode(ColourMode wanted, std::uint32_t attributes) {
   if (wanted != ColourMode::kAuto) return wanted;
@@ -94,17 +90,8 @@ void recordPresentation(VkCommandBuffer commands, const RenderTarget& target, co
                         bool colour_image_ready) {
   const VkImage colour = target.colour_image.handle();
   if (!colour_image_ready) {
-    gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    gpu::imageBarrier(commands, colour, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    const VkBufferImageCopy region{
-        0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {target.width, target.height, 1}};
-    vkCmdCopyBufferToImage(commands, target.colour.handle(), colour, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    gpu::imageBarrier(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
+    target.copyColourToImage(commands, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                             VK_ACCESS_2_TRANSFER_READ_BIT);
   } else {
     gpu::imageBarrier(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,

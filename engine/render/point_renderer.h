@@ -50,7 +50,7 @@ struct RenderSettings {
   ColourMode colour = ColourMode::kAuto;
   bool edl = true;
   float edl_strength = 0.35f;  // 1 is Potree's strength; scanner noise darkens dense surfaces then
-  std::array<std::uint8_t, 4> background{30, 32, 36, 255};  // RGBA
+  Rgba background{30, 32, 36, 255};
   SelectionOptions selection;
   // Points of a node with no drawn child cover a square of their spacing on screen (1 to 4 px);
   // off: every point is one pixel (the bare splat's work, for the benchmark).

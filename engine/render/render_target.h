@@ -23,6 +23,13 @@ struct RenderTarget {
   gpu::Image colour_image;  // the colour as an image: overlays draw into it, presentation blits it
 
   std::uint64_t pixels() const { return std::uint64_t{width} * height; }
+
+  // The whole colour image as one copy region, to and from the colour buffer.
+  VkBufferImageCopy colourRegion() const;
+  // Records the copy of the colour buffer (written by the resolve) into the colour image, left
+  // in `layout` for `next_stages` to access by `next_access`.
+  void copyColourToImage(VkCommandBuffer commands, VkImageLayout layout, VkPipelineStageFlags2 next_stages,
+                         VkAccessFlags2 next_access) const;
 };
 
 }  // namespace plumb::render
