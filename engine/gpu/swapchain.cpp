@@ -41,7 +41,9 @@ Swapchain::Swapchain(const Instance& instance, const Device& device, VkSurfaceKH
     : instance_(instance.handle()),
       device_(device),
       surface_(surface),
-      framebuffer_size_(std::move(framebuffer_size)) {}
+      framebuffer_size_(std::move(framebuffer_size)),
+      surface_format_(chooseFormat(device.physical(), surface)),
+      format_(surface_format_.format) {}
 
 Swapchain::~Swapchain() {
   vkDeviceWaitIdle(device_.handle());  // presentation may still read the images
@@ -71,7 +73,7 @@ void Swapchain::build() {
   if (extent.width == 0 || extent.height == 0) return;  // minimised: stays stale
 
   vkDeviceWaitIdle(device_.handle());  // the old images may be in use
-  const VkSurfaceFormatKHR format = chooseFormat(device_.physical(), surface_);
+  const VkSurfaceFormatKHR& format = surface_format_;
   std::uint32_t image_count = std::max(capabilities.minImageCount + 1, 2u);
   if (capabilities.maxImageCount > 0) image_count = std::min(image_count, capabilities.maxImageCount);
 
@@ -83,7 +85,10 @@ void Swapchain::build() {
   create.imageColorSpace = format.colorSpace;
   create.imageExtent = extent;
   create.imageArrayLayers = 1;
-  create.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+  // Transfer source too where the surface allows it: the viewer's screenshots read the image.
+  readable_ = (capabilities.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
+  create.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                      (readable_ ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0});
   create.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   create.preTransform = capabilities.currentTransform;
   create.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;

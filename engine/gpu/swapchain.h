@@ -45,6 +45,10 @@ class Swapchain {
   void present(const SwapchainImage& image);
 
   VkExtent2D extent() const { return extent_; }
+  VkFormat format() const { return format_; }  // known from construction, before the first build
+  std::uint32_t imageCount() const { return static_cast<std::uint32_t>(images_.size()); }
+  // Whether the images may be copied from (TRANSFER_SRC), for screenshots.
+  bool readable() const { return readable_; }
   std::uint64_t rebuilds() const { return rebuilds_; }  // since construction, the first build excluded
 
  private:
@@ -56,6 +60,7 @@ class Swapchain {
   VkSurfaceKHR surface_;
   std::function<VkExtent2D()> framebuffer_size_;
   VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+  VkSurfaceFormatKHR surface_format_;  // chosen once: a render pass made for it stays valid
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   VkExtent2D extent_{0, 0};
   std::vector<VkImage> images_;
@@ -63,6 +68,7 @@ class Swapchain {
   std::vector<VkSemaphore> rendered_;  // one per image
   std::size_t next_acquired_ = 0;
   bool stale_ = true;  // rebuild before the next acquire
+  bool readable_ = false;
   std::uint64_t builds_ = 0, rebuilds_ = 0;
 };
 

@@ -2,12 +2,17 @@
 
 #include <tbb/task_group.h>
 
+#include <condition_variable>
 #include <exception>
 
 namespace plumb::lod {
 
 struct NodeCache::Background {
-  tbb::task_group loads;
+  tbb::task_group loads;  // without a runner
+  BackgroundRunner runner;
+  std::mutex mutex;  // guards outstanding
+  std::condition_variable done;
+  std::size_t outstanding = 0;  // loads handed to the runner and not finished
 };
 
 struct NodeCache::Entry {
@@ -23,6 +28,29 @@ NodeCache::NodeCache(std::shared_ptr<const Octree> octree, std::size_t budget_by
 
 NodeCache::~NodeCache() {
   background_->loads.wait();
+  std::unique_lock lock(background_->mutex);
+  background_->done.wait(lock, [&] { return background_->outstanding == 0; });
+}
+
+void NodeCache::setBackgroundRunner(BackgroundRunner runner) {
+  background_->runner = std::move(runner);
+}
+
+void NodeCache::loadInBackground(const std::shared_ptr<Entry>& entry, const NodeInfo& node) {
+  Background& background = *background_;
+  if (!background.runner) {
+    background.loads.run([this, entry, node] { load(entry, node); });
+    return;
+  }
+  {
+    const std::scoped_lock lock(background.mutex);
+    ++background.outstanding;
+  }
+  background.runner([this, entry, node] {
+    load(entry, node);
+    const std::scoped_lock lock(background_->mutex);
+    if (--background_->outstanding == 0) background_->done.notify_all();
+  });
 }
 
 std::shared_ptr<NodeCache::Entry> NodeCache::acquire(const NodeInfo& node, bool& must_load) {
@@ -107,7 +135,7 @@ std::shared_ptr<const NodePoints> NodeCache::tryGet(const CellKey& key) {
   bool must_load = false;
   const std::shared_ptr<Entry> entry = acquireLocked(*node, must_load);
   if (must_load) {
-    background_->loads.run([this, entry, node] { load(entry, *node); });
+    loadInBackground(entry, *node);
     return nullptr;
   }
   const std::lock_guard lock(mutex_);

@@ -6,6 +6,7 @@
 
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -46,12 +47,20 @@ class NodeCache {
 
   NodeCacheStats stats() const;
 
+  // Where background loads run: by default oneTBB tasks of the cache's own; an app with a job
+  // system passes a runner that submits the work at its streaming priority. The runner must run
+  // every piece of work it is given, even when cancelled (the cache waits for them when it is
+  // destroyed). Set it before the first tryGet or prefetch.
+  using BackgroundRunner = std::function<void(std::function<void()> work)>;
+  void setBackgroundRunner(BackgroundRunner runner);
+
  private:
   struct Entry;
   // Finds or creates the entry for `node`; returns whether this caller must load it.
   std::shared_ptr<Entry> acquire(const NodeInfo& node, bool& must_load);        // mutex_ held
   std::shared_ptr<Entry> acquireLocked(const NodeInfo& node, bool& must_load);  // takes mutex_
   void load(const std::shared_ptr<Entry>& entry, const NodeInfo& node);
+  void loadInBackground(const std::shared_ptr<Entry>& entry, const NodeInfo& node);
   std::shared_ptr<const NodePoints> wait(const std::shared_ptr<Entry>& entry);
   void evictOverBudget();
 

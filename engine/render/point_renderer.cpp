@@ -87,7 +87,7 @@ std::uint32_t shaderColourMode(ColourMode mode) {
 // colour image holds the colour already when the overlay pass ran; otherwise it comes from the
 // colour buffer first.
 void recordPresentation(VkCommandBuffer commands, const RenderTarget& target, const gpu::SwapchainImage& present,
-                        bool colour_image_ready) {
+                        bool colour_image_ready, const PointRenderer::PresentHook& hook) {
   const VkImage colour = target.colour_image.handle();
   if (!colour_image_ready) {
     target.copyColourToImage(commands, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
@@ -109,6 +109,10 @@ void recordPresentation(VkCommandBuffer commands, const RenderTarget& target, co
                         static_cast<std::int32_t>(present.extent.height), 1};
   vkCmdBlitImage(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present.image,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+  if (hook) {
+    hook(commands, present);
+    return;
+  }
   gpu::imageBarrier(commands, present.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                     VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE,
                     VK_ACCESS_2_NONE);
@@ -175,6 +179,7 @@ struct PointRenderer::Resources {
   std::shared_ptr<const SegmentLabels> labels;  // ColourMode::kSegment
   OverlayPass overlay_pass;
   std::shared_ptr<const OverlayScene> overlay;
+  PresentHook present_hook;
   std::vector<ChunkOrigin> last_chunks;  // of the last rendered frame
   std::uint64_t frames = 0;
   std::uint64_t last_frame_value = 0;       // the timeline value of the last rendered frame
@@ -240,6 +245,14 @@ std::array<std::uint32_t, 2> PointRenderer::targetSize() const {
 
 void PointRenderer::setOverlay(std::shared_ptr<const OverlayScene> overlay) {
   resources_->overlay = std::move(overlay);
+}
+
+void PointRenderer::setPresentHook(PresentHook hook) {
+  resources_->present_hook = std::move(hook);
+}
+
+void PointRenderer::waitForFrames() {
+  resources_->waitForAll();
 }
 
 void PointRenderer::setSegmentLabels(std::shared_ptr<const SegmentLabels> labels) {
@@ -402,9 +415,12 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                         r.overlay_pass.record(commands, value % kFramesInFlight, target, *r.overlay, camera,
                                               settings.overlay_depth_tolerance);
   if (present_to != nullptr) {
-    recordPresentation(commands, target, *present_to, overlaid);
-    gpu::submit(r.device, commands, r.timeline, value, present_to->acquired,
-                VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, present_to->rendered);
+    recordPresentation(commands, target, *present_to, overlaid, r.present_hook);
+    // The hook may draw into the image too: its colour output waits for the acquire as well.
+    gpu::submit(
+        r.device, commands, r.timeline, value, present_to->acquired,
+        VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+        present_to->rendered);
   } else {
     gpu::submit(r.device, commands, r.timeline, value);
   }
@@ -456,6 +472,11 @@ io::RgbaImage PointRenderer::readColour() {
   return image;
 }
 
+// What counts as the front surface when picking: within this fraction of the nearest depth in
+// the window plus this many metres (scanner noise, a surface seen at a grazing angle).
+constexpr float kPickFrontFraction = 0.02f;
+constexpr float kPickFrontMetres = 0.02f;
+
 std::optional<PickedPoint> PointRenderer::pick(int x, int y, int radius_px) {
   Resources& r = *resources_;
   if (!r.target || r.last_chunks.empty()) return std::nullopt;
@@ -473,6 +494,26 @@ std::optional<PickedPoint> PointRenderer::pick(int x, int y, int radius_px) {
   r.readBack(target.resolved, rows);
 
   const auto* values = static_cast<const std::uint64_t*>(r.readback.mapped());
+  const auto depthOf = [](std::uint64_t v) {
+    const auto bits = static_cast<std::uint32_t>(v >> 32);
+    float depth = 0.0f;
+    std::memcpy(&depth, &bits, sizeof depth);
+    return depth;
+  };
+  // The front surface: a scan sees both faces of a wall, and through the gaps of a sparse near
+  // face the far one shows. Only points near the nearest depth in the window count.
+  float nearest_depth = INFINITY;
+  for (int row = y0; row <= y1; ++row) {
+    for (int column = x0; column <= x1; ++column) {
+      const std::uint64_t v =
+          values[static_cast<std::size_t>(row - y0) * columns + static_cast<std::size_t>(column - x0)];
+      const long distance = long{column - x} * (column - x) + long{row - y} * (row - y);
+      if (v != ~std::uint64_t{0} && distance <= long{radius_px} * radius_px) {
+        nearest_depth = std::min(nearest_depth, depthOf(v));
+      }
+    }
+  }
+  const float front_depth = nearest_depth * (1.0f + kPickFrontFraction) + kPickFrontMetres;
   std::optional<PickedPoint> best;
   long best_distance = 0;
   std::uint64_t best_value = 0;
@@ -480,7 +521,7 @@ std::optional<PickedPoint> PointRenderer::pick(int x, int y, int radius_px) {
     for (int column = x0; column <= x1; ++column) {
       const std::uint64_t v =
           values[static_cast<std::size_t>(row - y0) * columns + static_cast<std::size_t>(column - x0)];
-      if (v == ~std::uint64_t{0}) continue;
+      if (v == ~std::uint64_t{0} || depthOf(v) > front_depth) continue;
       const long distance = long{column - x} * (column - x) + long{row - y} * (row - y);
       if (distance > long{radius_px} * radius_px) continue;
       if (best && (distance > best_distance || (distance == best_distance && v >= best_value))) continue;

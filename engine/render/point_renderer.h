@@ -11,8 +11,11 @@
 //
 // Not thread-safe: one thread (the render thread) calls everything.
 
+#include <vulkan/vulkan.h>
+
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -117,6 +120,17 @@ class PointRenderer {
   FrameStats render(const view::Camera& camera, const RenderSettings& settings,
                     NodeLoading loading = NodeLoading::kStream, const gpu::SwapchainImage* present_to = nullptr);
 
+  // Records more work into the frame's command buffer after the copy into the swapchain image:
+  // a user interface drawn on top, a screenshot. The image arrives in TRANSFER_DST_OPTIMAL
+  // with the copy's writes made available to the transfer stage; the hook must leave it in
+  // PRESENT_SRC_KHR. Without a hook the renderer makes that transition itself. Set it before
+  // render(); null removes it.
+  using PresentHook = std::function<void(VkCommandBuffer commands, const gpu::SwapchainImage& image)>;
+  void setPresentHook(PresentHook hook);
+
+  // Blocks until the GPU has finished every frame submitted so far (a screenshot's readback).
+  void waitForFrames();
+
   // The labelling ColourMode::kSegment shows (null: none, every point grey). Takes effect from
   // the next frame; nodes whose labels are not uploaded yet show grey meanwhile.
   void setSegmentLabels(std::shared_ptr<const SegmentLabels> labels);
@@ -132,7 +146,8 @@ class PointRenderer {
   io::RgbaImage readColour();
 
   // Waits for the last frame; the point nearest to pixel (x, y) (rows from the top) within
-  // `radius_px`, nearer to the eye on a tie; nothing when no point is there.
+  // `radius_px` among those of the front surface there (within 2 % plus 2 cm of the nearest
+  // depth in that window), nearer to the eye on a tie; nothing when no point is there.
   std::optional<PickedPoint> pick(int x, int y, int radius_px = 3);
 
   // The last frame's target size, 0 x 0 before the first frame.

@@ -260,10 +260,11 @@ struct Trial {
   std::optional<double> nearest_mm;  // the nearest reconstructed corner, lost or not; empty: none
   double limit_mm;
   double grow_ms;
-  std::uint64_t points;  // inliers of all segments together
-  std::size_t segments;  // how many planes the grow kept (a corner needs three)
-  double spacing_m;      // the point spacing of the grow's starting octree level
-  bool timed_out;        // cancelled at --grow-limit-s, so lost
+  std::uint64_t points;       // inliers of all segments together
+  std::uint64_t true_points;  // the points of the corner's three true planes (what the limit uses)
+  std::size_t segments;       // how many planes the grow kept (a corner needs three)
+  double spacing_m;           // the point spacing of the grow's starting octree level
+  bool timed_out;             // cancelled at --grow-limit-s, so lost
 };
 
 // A folder removed with everything in it when the repetition ends, however it ends.
@@ -346,6 +347,8 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
     const std::optional<Eigen::Vector3d> limit_corner = intersect(fitted, corner.position);
     if (!limit_corner) throw Error("the least-squares walls of corner " + std::to_string(corner.id) + " do not meet");
     const double limit_mm = (*limit_corner - corner.position).norm() * 1e3;
+    std::uint64_t true_points = 0;
+    for (std::size_t i = 0; i < 3; ++i) true_points += regressions[corner.planes[i]].count();
 
     for (const std::string& detail : settings.details) {
       if (detail == "full" && settings.full_repetitions && repetition >= *settings.full_repetitions) continue;
@@ -381,6 +384,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
                   .limit_mm = limit_mm,
                   .grow_ms = result.elapsed_ms,
                   .points = points,
+                  .true_points = true_points,
                   .segments = result.segments.size(),
                   .spacing_m = octree->spacing(result.level),
                   .timed_out = false};
@@ -481,13 +485,13 @@ std::string trialsCsv(const std::vector<Trial>& trials) {
   // The columns, then what explains a lost corner: the planes kept and the nearest corner.
   std::string csv =
       "noise_mm,repetition,corner,detail,error_mm,lost,limit_mm,grow_ms,points,spacing_m,"
-      "segments,nearest_mm,timed_out\n";
+      "segments,nearest_mm,timed_out,true_points\n";
   for (const Trial& t : trials) {
     csv += number(t.noise_mm) + "," + std::to_string(t.repetition) + "," + std::to_string(t.corner) + "," + t.detail +
            "," + (t.error_mm ? number(*t.error_mm) : "") + "," + (t.error_mm ? "0" : "1") + "," + number(t.limit_mm) +
            "," + number(t.grow_ms, "%.3f") + "," + std::to_string(t.points) + "," + number(t.spacing_m) + "," +
            std::to_string(t.segments) + "," + (t.nearest_mm ? number(*t.nearest_mm) : "") + "," +
-           (t.timed_out ? "1" : "0") + "\n";
+           (t.timed_out ? "1" : "0") + "," + std::to_string(t.true_points) + "\n";
   }
   return csv;
 }

@@ -22,5 +22,6 @@ Command addGrowCommand(CLI::App& plumb);
 Command addImportCommand(CLI::App& plumb);
 Command addInfoCommand(CLI::App& plumb);
 Command addRenderCommand(CLI::App& plumb);
+Command addViewCommand(CLI::App& plumb);
 
 }  // namespace plumb::cli

@@ -1,0 +1,116 @@
+// The viewer end to end, as a user drives it: `plumb view` on its demo under Xvfb, on lavapipe
+// with validation on (any message fails the run), replaying a scripted session: wait for the
+// view to load, click a corridor wall, wait for the grow to converge, take screenshots. The
+// scene dump must hold a segment on the simulator's true wall within 0.5 degrees and 5 mm.
+//
+// PLUMB_TEST_SCREENSHOTS=DIR keeps the screenshots there for a person to look at.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "engine/io/png_image.h"
+#include "tests/support/temp_directory.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// The demo's corridor wall y+ (y = 2 m in the scene's frame), at a point the demo's first view
+// shows: the script clicks where this point appears.
+const Eigen::Vector3d kWallPoint(512003.0, 5403002.0, 251.3);
+constexpr double kMaxAngleDeg = 0.5;
+constexpr double kMaxOffsetM = 0.005;
+
+json readJson(const fs::path& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
+Eigen::Vector3d vector3(const json& value) {
+  return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+}
+
+double differingPixels(const plumb::io::RgbaImage& a, const plumb::io::RgbaImage& b) {
+  std::size_t differing = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) differing += a.pixel(x, y) != b.pixel(x, y);
+  }
+  return static_cast<double>(differing) / (static_cast<double>(a.width) * a.height);
+}
+
+TEST(Viewer, AClickOnTheDemoWallGrowsItsPlane) {
+  const plumb::test::TempDirectory dir;
+  const fs::path cache = dir.file("cache"), shots = dir.file("shots");
+  const fs::path script = dir.file("session.json"), scene = dir.file("scene.json");
+  std::ofstream(script) << json::array(
+                               {
+                                   {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+                                   {{"screenshot", "1-demo.png"}},
+                                   {{"click_world", json::array({kWallPoint.x(), kWallPoint.y(), kWallPoint.z()})}},
+                                   {{"wait", "grower_idle"}, {"timeout_s", 300}},
+                                   {{"wait", "frames"}, {"count", 2}},
+                                   {{"screenshot", "2-grown.png"}},
+                                   {{"key", "1"}},
+                                   {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+                                   {{"screenshot", "3-top.png"}},
+                               })
+                               .dump(2);
+  const std::string command = "XDG_CACHE_HOME='" + cache.string() + "' PLUMB_VALIDATION=1 PLUMB_GPU=cpu " +
+                              "xvfb-run -a -s '-screen 0 1600x900x24' '" + PLUMB_BINARY + "' view --script '" +
+                              script.string() + "' --screenshot-dir '" + shots.string() + "' --dump-scene '" +
+                              scene.string() + "' --width 1280 --height 720";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+
+  // The segment on the wall.
+  const json dump = readJson(scene);
+  const json truth = readJson(cache / "plumb" / "demo-office-1M-2mm-v1.truth.json");
+  Eigen::Vector3d true_normal = Eigen::Vector3d::Zero();
+  double true_d = 0.0;
+  for (const json& plane : truth.at("planes")) {
+    if (plane.at("name") == "corridor wall y+") {
+      true_normal = vector3(plane.at("normal"));
+      true_d = plane.at("d").get<double>();
+    }
+  }
+  ASSERT_NEAR(true_normal.norm(), 1.0, 1e-9) << "the truth has no 'corridor wall y+'";
+  const Eigen::Vector3d on_wall = kWallPoint - (true_normal.dot(kWallPoint) + true_d) * true_normal;
+  bool found = false;
+  for (const json& segment : dump.at("segments")) {
+    const Eigen::Vector3d normal = vector3(segment.at("normal"));
+    const Eigen::Vector3d centroid = vector3(segment.at("centroid"));
+    const double angle_deg = std::acos(std::min(1.0, std::abs(normal.dot(true_normal)))) * 180.0 / M_PI;
+    const double offset_m = std::abs(normal.dot(on_wall - centroid));  // the planes apart at the click
+    std::printf("segment %s: %d points, %.4f degrees and %.2f mm off the wall\n",
+                segment.at("name").get<std::string>().c_str(), segment.at("points").get<int>(), angle_deg,
+                offset_m * 1e3);
+    EXPECT_FALSE(segment.at("growing").get<bool>());
+    found = found || (angle_deg <= kMaxAngleDeg && offset_m <= kMaxOffsetM);
+  }
+  EXPECT_TRUE(found) << "no segment within " << kMaxAngleDeg << " degrees and " << kMaxOffsetM * 1e3
+                     << " mm of the corridor wall";
+
+  // The screenshots: the window's size, and the grow's outline visible in the second.
+  const plumb::io::RgbaImage demo = plumb::io::readPng((shots / "1-demo.png").string());
+  const plumb::io::RgbaImage grown = plumb::io::readPng((shots / "2-grown.png").string());
+  const plumb::io::RgbaImage top = plumb::io::readPng((shots / "3-top.png").string());
+  EXPECT_EQ(demo.width, 1280);
+  EXPECT_EQ(demo.height, 720);
+  EXPECT_GT(differingPixels(demo, grown), 0.05) << "the grown segment should colour a good part of the view";
+  EXPECT_GT(differingPixels(grown, top), 0.3) << "the top view should look different";
+  if (const char* keep = std::getenv("PLUMB_TEST_SCREENSHOTS")) {
+    fs::create_directories(keep);
+    for (const auto& entry : fs::directory_iterator(shots)) {
+      fs::copy_file(entry.path(), fs::path(keep) / entry.path().filename(), fs::copy_options::overwrite_existing);
+    }
+  }
+}
+
+}  // namespace

@@ -1,0 +1,284 @@
+#include "ui/viewer/session_script.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "engine/core/error.h"
+
+namespace plumb::viewer {
+namespace {
+
+using nlohmann::json;
+
+int keyCode(const std::string& name) {
+  if (name.size() == 1 && name[0] >= 'A' && name[0] <= 'Z') return GLFW_KEY_A + (name[0] - 'A');
+  if (name.size() == 1 && name[0] >= 'a' && name[0] <= 'z') return GLFW_KEY_A + (name[0] - 'a');
+  if (name.size() == 1 && name[0] >= '0' && name[0] <= '9') return GLFW_KEY_0 + (name[0] - '0');
+  if (name.size() >= 2 && name[0] == 'F' && name.size() <= 3) {
+    const int n = std::atoi(name.c_str() + 1);
+    if (n >= 1 && n <= 12) return GLFW_KEY_F1 + n - 1;
+  }
+  static const std::map<std::string, int> kNamed{
+      {"ESCAPE", GLFW_KEY_ESCAPE}, {"SPACE", GLFW_KEY_SPACE},   {"TAB", GLFW_KEY_TAB},
+      {"ENTER", GLFW_KEY_ENTER},   {"DELETE", GLFW_KEY_DELETE}, {"BACKSPACE", GLFW_KEY_BACKSPACE},
+      {"PERIOD", GLFW_KEY_PERIOD}, {"LEFT", GLFW_KEY_LEFT},     {"RIGHT", GLFW_KEY_RIGHT},
+      {"UP", GLFW_KEY_UP},         {"DOWN", GLFW_KEY_DOWN},     {"LEFT_SHIFT", GLFW_KEY_LEFT_SHIFT}};
+  const auto it = kNamed.find(name);
+  return it == kNamed.end() ? -1 : it->second;
+}
+
+class StepParser {
+ public:
+  StepParser(const std::string& path, std::size_t index, const json& step) : path_(path), index_(index), step_(step) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(path_ + ": step " + std::to_string(index_ + 1) + ": " + what);
+  }
+
+  std::array<double, 2> pixel(const char* field) const {
+    const json& value = step_.at(field);
+    if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
+      fail(std::string("'") + field + "' must be [x, y] in window pixels");
+    }
+    const double x = value[0].get<double>(), y = value[1].get<double>();
+    if (!std::isfinite(x) || !std::isfinite(y) || x < 0 || y < 0 || x > 1e5 || y > 1e5) {
+      fail(std::string("'") + field + "' is outside any window");
+    }
+    return {x, y};
+  }
+
+  int button() const {
+    const std::string name = step_.value("button", "left");
+    if (name == "left") return GLFW_MOUSE_BUTTON_LEFT;
+    if (name == "right") return GLFW_MOUSE_BUTTON_RIGHT;
+    if (name == "middle") return GLFW_MOUSE_BUTTON_MIDDLE;
+    fail("unknown button '" + name + "' (left, right or middle)");
+  }
+
+  double number(const char* field, double fallback, double min, double max) const {
+    if (!step_.contains(field)) return fallback;
+    const json& value = step_.at(field);
+    if (!value.is_number()) fail(std::string("'") + field + "' must be a number");
+    const double v = value.get<double>();
+    if (!(v >= min && v <= max))
+      fail(std::string("'") + field + "' must lie in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    return v;
+  }
+
+  ScriptStep parse() const {
+    if (!step_.is_object() || step_.empty()) fail("a step is an object such as {\"click\": [x, y]}");
+    ScriptStep out;
+    out.line = index_;
+    using Kind = InputEvent::Kind;
+    const auto move = [](double x, double y) { return InputEvent{.kind = Kind::kMouseMove, .x = x, .y = y}; };
+    const auto buttonEvent = [](double x, double y, int b, bool pressed) {
+      return InputEvent{.kind = Kind::kMouseButton, .x = x, .y = y, .button = b, .pressed = pressed};
+    };
+    if (step_.contains("move")) {
+      const auto [x, y] = pixel("move");
+      out.frames = {{move(x, y)}};
+    } else if (step_.contains("click")) {
+      const auto [x, y] = pixel("click");
+      const int b = button();
+      // One frame each: ImGui 1.86 keeps input as state and would miss a press released at once.
+      out.frames = {{move(x, y)}, {buttonEvent(x, y, b, true)}, {buttonEvent(x, y, b, false)}};
+    } else if (step_.contains("double_click")) {
+      const auto [x, y] = pixel("double_click");
+      const int b = GLFW_MOUSE_BUTTON_LEFT;
+      out.frames = {{move(x, y)},
+                    {buttonEvent(x, y, b, true), buttonEvent(x, y, b, false)},
+                    {buttonEvent(x, y, b, true), buttonEvent(x, y, b, false)}};
+    } else if (step_.contains("click_world")) {
+      const json& value = step_.at("click_world");
+      if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
+          !value[2].is_number()) {
+        fail("'click_world' must be [X, Y, Z] in world coordinates");
+      }
+      out.kind = ScriptStep::Kind::kClickWorld;
+      out.world = {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+      if (!out.world.allFinite()) fail("'click_world' must be finite");
+    } else if (step_.contains("drag")) {
+      const json& value = step_.at("drag");
+      if (!value.is_array() || value.size() != 4) fail("'drag' must be [x0, y0, x1, y1]");
+      std::array<double, 4> p{};
+      for (std::size_t i = 0; i < 4; ++i) {
+        if (!value[i].is_number()) fail("'drag' must be [x0, y0, x1, y1]");
+        p[i] = value[i].get<double>();
+        if (!std::isfinite(p[i]) || p[i] < 0 || p[i] > 1e5) fail("'drag' is outside any window");
+      }
+      const int b = button();
+      const auto steps = static_cast<int>(number("steps", 10, 1, 1000));
+      out.frames.push_back({move(p[0], p[1])});
+      out.frames.push_back({buttonEvent(p[0], p[1], b, true)});
+      for (int i = 1; i <= steps; ++i) {
+        const double t = static_cast<double>(i) / steps;
+        out.frames.push_back({move(p[0] + t * (p[2] - p[0]), p[1] + t * (p[3] - p[1]))});
+      }
+      out.frames.push_back({buttonEvent(p[2], p[3], b, false)});
+    } else if (step_.contains("wheel")) {
+      const double amount = number("wheel", 0, -100, 100);
+      const auto [x, y] = step_.contains("at") ? pixel("at") : std::array<double, 2>{-1, -1};
+      std::vector<InputEvent> frame;
+      if (x >= 0) frame.push_back(move(x, y));
+      frame.push_back(InputEvent{.kind = Kind::kWheel, .x = x, .y = y, .wheel_y = amount});
+      out.frames = {frame};
+    } else if (step_.contains("key")) {
+      const json& value = step_.at("key");
+      if (!value.is_string()) fail("'key' must be a key name such as \"F\" or \"ESCAPE\"");
+      const int code = keyCode(value.get<std::string>());
+      if (code < 0) fail("unknown key '" + value.get<std::string>() + "'");
+      const auto hold = static_cast<std::size_t>(number("hold_frames", 0, 0, 100000));
+      out.frames.push_back({InputEvent{.kind = Kind::kKey, .key = code, .pressed = true}});
+      for (std::size_t i = 0; i < hold; ++i) out.frames.push_back({});
+      out.frames.push_back({InputEvent{.kind = Kind::kKey, .key = code, .pressed = false}});
+    } else if (step_.contains("tool")) {
+      const std::string name = step_.at("tool").is_string() ? step_.at("tool").get<std::string>() : "";
+      out.kind = ScriptStep::Kind::kTool;
+      if (name == "navigate") {
+        out.tool = Tool::kNavigate;
+      } else if (name == "grow") {
+        out.tool = Tool::kGrow;
+      } else if (name == "measure") {
+        out.tool = Tool::kMeasure;
+      } else {
+        fail("unknown tool '" + name + "' (navigate, grow or measure)");
+      }
+    } else if (step_.contains("wait")) {
+      const std::string what = step_.at("wait").is_string() ? step_.at("wait").get<std::string>() : "";
+      out.timeout_s = number("timeout_s", 60, 0.001, 3600);
+      if (what == "frames") {
+        out.kind = ScriptStep::Kind::kWaitFrames;
+        out.count = static_cast<std::uint64_t>(number("count", 1, 0, 1e6));
+      } else if (what == "ms") {
+        out.kind = ScriptStep::Kind::kWaitMs;
+        out.ms = number("ms", 0, 0, 3.6e6);
+      } else if (what == "grower_idle") {
+        out.kind = ScriptStep::Kind::kWaitGrowerIdle;
+      } else if (what == "streaming_idle") {
+        out.kind = ScriptStep::Kind::kWaitStreamingIdle;
+      } else {
+        fail("unknown wait '" + what + "' (frames, ms, grower_idle, streaming_idle)");
+      }
+    } else if (step_.contains("screenshot")) {
+      out.kind = ScriptStep::Kind::kScreenshot;
+      out.name = step_.at("screenshot").is_string() ? step_.at("screenshot").get<std::string>() : "";
+      if (out.name.empty() || out.name.find('/') != std::string::npos || out.name.size() > 200) {
+        fail("'screenshot' must be a file name (no folders; it goes into --screenshot-dir)");
+      }
+    } else if (step_.contains("resize")) {
+      const auto [w, h] = pixel("resize");
+      if (w < 64 || h < 64 || w > 16384 || h > 16384) fail("'resize' must be from 64 x 64 to 16384 x 16384");
+      out.kind = ScriptStep::Kind::kResize;
+      out.width = static_cast<int>(w);
+      out.height = static_cast<int>(h);
+    } else {
+      fail("unknown step " + step_.dump() + " (see docs/user-guide.md)");
+    }
+    return out;
+  }
+
+ private:
+  const std::string& path_;
+  std::size_t index_;
+  const json& step_;
+};
+
+}  // namespace
+
+std::vector<ScriptStep> readSessionScript(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the session script");
+  json document;
+  try {
+    document = json::parse(in);
+  } catch (const json::parse_error& error) {
+    throw Error(path + ": not JSON: " + error.what());
+  }
+  const json* steps = &document;
+  if (document.is_object() && document.contains("steps")) steps = &document.at("steps");
+  if (!steps->is_array()) throw Error(path + ": expected a list of steps (or {\"steps\": [...]})");
+  if (steps->size() > 100000) throw Error(path + ": more than 100000 steps");
+  std::vector<ScriptStep> out;
+  for (std::size_t i = 0; i < steps->size(); ++i) {
+    try {
+      out.push_back(StepParser(path, i, (*steps)[i]).parse());
+    } catch (const json::exception& error) {
+      throw Error(path + ": step " + std::to_string(i + 1) + ": " + error.what());
+    }
+  }
+  return out;
+}
+
+ScriptPlayer::ScriptPlayer(std::vector<ScriptStep> steps) : steps_(steps.begin(), steps.end()) {}
+
+ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
+  ScriptFrame frame;
+  // Steps that take no frame of their own (a tool, a screenshot) run together with the next.
+  while (!steps_.empty()) {
+    ScriptStep& step = steps_.front();
+    const auto done = [&] {
+      steps_.pop_front();
+      frame_index_ = 0;
+      frames_waited_ = 0;
+      wait_started_.reset();
+    };
+    const auto waitedTooLong = [&] {
+      if (!wait_started_) wait_started_ = Clock::now();
+      return std::chrono::duration<double>(Clock::now() - *wait_started_).count() > step.timeout_s;
+    };
+    switch (step.kind) {
+      case ScriptStep::Kind::kEvents:
+        frame.events = step.frames[frame_index_];
+        if (++frame_index_ >= step.frames.size()) done();
+        return frame;
+      case ScriptStep::Kind::kClickWorld:
+        frame.click_world = step.world;
+        done();
+        return frame;
+      case ScriptStep::Kind::kTool:
+        frame.tool = step.tool;
+        done();
+        continue;
+      case ScriptStep::Kind::kScreenshot:
+        frame.screenshot = step.name;
+        done();
+        return frame;  // one per frame: the copy is of this frame's image
+      case ScriptStep::Kind::kResize:
+        frame.resize = std::pair{step.width, step.height};
+        done();
+        return frame;
+      case ScriptStep::Kind::kWaitFrames:
+        if (frames_waited_++ < step.count) return frame;
+        done();
+        continue;
+      case ScriptStep::Kind::kWaitMs:
+        if (!wait_started_) wait_started_ = Clock::now();
+        if (std::chrono::duration<double, std::milli>(Clock::now() - *wait_started_).count() < step.ms) return frame;
+        done();
+        continue;
+      case ScriptStep::Kind::kWaitGrowerIdle:
+      case ScriptStep::Kind::kWaitStreamingIdle: {
+        const bool idle = step.kind == ScriptStep::Kind::kWaitGrowerIdle ? grower_idle : streaming_idle;
+        // At least one frame after the step before it, so a click's grow has started.
+        if (frames_waited_++ == 0 || !idle) {
+          if (waitedTooLong()) {
+            frame.failure = "step " + std::to_string(step.line + 1) + ": the wait timed out after " +
+                            std::to_string(step.timeout_s) + " s";
+            return frame;
+          }
+          return frame;
+        }
+        done();
+        continue;
+      }
+    }
+  }
+  frame.finished = true;
+  return frame;
+}
+
+}  // namespace plumb::viewer

@@ -1,0 +1,87 @@
+#pragma once
+// Scripted sessions for tests and demos (plumb view --script): a JSON list of steps that the
+// viewer replays as if a user did them, frame by frame, through the same InputEvents.
+// docs/user-guide.md documents the format; in short, each step is one object:
+//
+//   {"move": [x, y]}                       the mouse to a window pixel
+//   {"click": [x, y], "button": "left"}    press and release (button: left, right, middle)
+//   {"double_click": [x, y]}
+//   {"click_world": [X, Y, Z]}             a left click where a world point appears now
+//   {"drag": [x0, y0, x1, y1], "button": "left", "steps": 10}
+//   {"wheel": 1.0, "at": [x, y]}           positive zooms in
+//   {"key": "F", "hold_frames": 0}         a key press and release (GLFW key names: A-Z, 0-9,
+//                                          ESCAPE, SPACE, TAB, ENTER, DELETE, F1-F12, ...)
+//   {"tool": "grow"}                       choose a tool (navigate, grow, measure)
+//   {"wait": "frames", "count": N} | {"wait": "ms", "ms": N} | {"wait": "grower_idle"} |
+//   {"wait": "streaming_idle"}             the last two time out after "timeout_s" (default 60)
+//   {"screenshot": "name.png"}             into --screenshot-dir
+//   {"resize": [w, h]}                     the window
+//
+// The session ends after the last step (the scene is dumped, the viewer exits).
+
+#include <Eigen/Core>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ui/viewer/components.h"
+#include "ui/viewer/input_event.h"
+
+namespace plumb::viewer {
+
+struct ScriptStep {
+  enum class Kind : std::uint8_t {
+    kEvents,      // `frames`: the events of each frame in turn
+    kClickWorld,  // `world`
+    kTool,        // `tool`
+    kWaitFrames,  // `count`
+    kWaitMs,      // `ms`
+    kWaitGrowerIdle,
+    kWaitStreamingIdle,
+    kScreenshot,  // `name`
+    kResize,      // `width`, `height`
+  };
+  Kind kind = Kind::kEvents;
+  std::vector<std::vector<InputEvent>> frames{};
+  Eigen::Vector3d world = Eigen::Vector3d::Zero();
+  Tool tool = Tool::kGrow;
+  std::uint64_t count = 0;
+  double ms = 0.0;
+  double timeout_s = 60.0;
+  std::string name{};
+  int width = 0, height = 0;
+  std::size_t line = 0;  // the step's index in the file, for messages
+};
+
+// Parses a session file. Throws plumb::Error naming the file and the step for anything wrong.
+std::vector<ScriptStep> readSessionScript(const std::string& path);
+
+// What the player wants done this frame beside the input events.
+struct ScriptFrame {
+  std::vector<InputEvent> events;
+  std::optional<Tool> tool;
+  std::optional<std::string> screenshot;  // file name
+  std::optional<std::pair<int, int>> resize;
+  std::optional<Eigen::Vector3d> click_world;  // the viewer turns it into a click at its pixel
+  bool finished = false;                       // every step is done
+  std::optional<std::string> failure;          // a wait timed out: the session fails
+};
+
+class ScriptPlayer {
+ public:
+  explicit ScriptPlayer(std::vector<ScriptStep> steps);
+  // The next frame's part of the script. `grower_idle`, `streaming_idle`: the viewer's state.
+  ScriptFrame next(bool grower_idle, bool streaming_idle);
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::deque<ScriptStep> steps_;
+  std::size_t frame_index_ = 0;  // in the front step's frames
+  std::uint64_t frames_waited_ = 0;
+  std::optional<Clock::time_point> wait_started_;
+};
+
+}  // namespace plumb::viewer

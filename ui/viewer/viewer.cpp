@@ -1,0 +1,425 @@
+#include "ui/viewer/viewer.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
+#include "engine/io/png_image.h"
+#include "engine/lod/node_cache.h"
+#include "engine/lod/octree.h"
+#include "engine/lod/octree_builder.h"
+#include "engine/view/camera_controls.h"
+#include "ui/viewer/demo_scan.h"
+
+namespace plumb::viewer {
+namespace {
+
+constexpr std::size_t kNodeCacheBytes = std::size_t{1} << 30;
+
+bool isOctree(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, sizeof magic);
+  return in.gcount() == 8 && std::string_view(magic, 8) == "PLUMBOCT";
+}
+
+gpu::DeviceChoice deviceChoice(const ViewerOptions& options, VkSurfaceKHR surface) {
+  gpu::DeviceChoice choice =
+      options.gpu.empty() ? gpu::deviceChoiceFromEnvironment() : gpu::DeviceChoice{.prefer = options.gpu};
+  choice.present_to = surface;
+  return choice;
+}
+
+}  // namespace
+
+LoadedCloud::~LoadedCloud() {
+  grow.reset();      // waits for a running grow
+  renderer.reset();  // waits for the GPU
+  cache.reset();     // waits for background loads
+  octree.reset();
+  if (!temporary.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+  }
+}
+
+Viewer::Viewer(const ViewerOptions& options)
+    : options_(options),
+      instance_(gpu::instanceOptionsFromEnvironment(), windows_.requiredInstanceExtensions()),
+      window_(windows_, options.width, options.height, "Plumb"),
+      surface_(window_.createSurface(instance_.handle())),
+      device_(instance_, deviceChoice(options, surface_)),
+      swapchain_(instance_, device_, surface_, [this] { return window_.framebufferSize(); }),
+      allocator_(device_),
+      imgui_(instance_, device_, swapchain_),
+      screenshots_(device_, allocator_),
+      ui_commands_(device_, "viewer interface"),
+      ui_timeline_(device_) {
+  // On the CPU (lavapipe) a frame costs about 10 ns per pixel and 45 ns per point: half the
+  // resolution and a million points keep navigation near 30 frames per second.
+  const bool cpu = device_.isCpu();
+  render_scale_ = static_cast<float>(options.render_scale > 0.0 ? options.render_scale : (cpu ? 0.5 : 1.0));
+  settings_.selection.point_budget = options.budget_points > 0 ? options.budget_points : (cpu ? 1'000'000 : 5'000'000);
+  jobs_.setWakeUp([] { Window::wakeUp(); });
+  if (!options.script.empty()) script_.emplace(readSessionScript(options.script));
+  startLoading();
+}
+
+Viewer::~Viewer() {
+  if (cloud_ && cloud_->grow) cloud_->grow->cancel();
+  jobs_.waitIdle();  // an import or a grow still running finishes (or sees its cancellation) first
+  cloud_.reset();
+  vkDeviceWaitIdle(device_.handle());
+}
+
+// --- loading -----------------------------------------------------------------------------------
+
+void Viewer::startLoading() {
+  const std::shared_ptr<LoadProgress> progress = load_progress_;
+  const auto report = [progress](std::string_view phase, double fraction) {
+    const std::scoped_lock lock(progress->mutex);
+    progress->phase = std::string(phase);
+    progress->fraction = std::clamp(fraction, 0.0, 1.0);
+  };
+  const std::string cloud = options_.cloud;
+  // An octree opens at once; a point file or the demo is made on a background job while the
+  // window shows the progress.
+  if (!cloud.empty() && isOctree(cloud)) {
+    openCloud(lod::Octree::open(cloud), "", options_.camera);
+    return;
+  }
+  load_job_ =
+      jobs_.submit(jobs::Priority::background, "load cloud", [this, progress, report, cloud](const jobs::CancelToken&) {
+        try {
+          std::string path = cloud, temporary;
+          std::optional<view::Camera> home = options_.camera;
+          if (cloud.empty()) {
+            const DemoScan demo = ensureDemoScan(report);
+            path = demo.octree.string();
+            if (!home) home = demo.home;
+          } else {
+            temporary =
+                (std::filesystem::temp_directory_path() / ("plumb-view-" + std::to_string(::getpid()) + ".plumb"))
+                    .string();
+            lod::BuildOptions build;
+            build.sources = lod::fileSources({cloud});
+            build.output = temporary;
+            build.progress = [&](std::string_view phase, std::uint64_t done, std::uint64_t total) {
+              report(std::string("importing ") + std::filesystem::path(cloud).filename().string() + ": " +
+                         std::string(phase),
+                     total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0.0);
+            };
+            lod::buildOctree(build);
+            path = temporary;
+          }
+          std::shared_ptr<const lod::Octree> octree = lod::Octree::open(path);
+          jobs_.post([this, octree, temporary, home] { openCloud(octree, temporary, home); });
+        } catch (const std::exception& error) {
+          const std::scoped_lock lock(progress->mutex);
+          progress->error = error.what();
+        }
+      });
+}
+
+void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string temporary,
+                       std::optional<view::Camera> home) {
+  auto cloud = std::make_unique<LoadedCloud>();
+  cloud->octree = std::move(octree);
+  cloud->temporary = std::move(temporary);
+  cloud->cache = std::make_unique<lod::NodeCache>(cloud->octree, kNodeCacheBytes);
+  // Node loads run at streaming priority: behind a grow the user waits for, ahead of imports.
+  cloud->cache->setBackgroundRunner([this](std::function<void()> work) {
+    jobs_.submit(jobs::Priority::streaming, "load node",
+                 [work = std::move(work)](const jobs::CancelToken&) { work(); });
+  });
+  cloud->renderer = std::make_unique<render::PointRenderer>(device_, allocator_, *cloud->cache);
+  const lod::Box3& bounds = cloud->octree->header().bounds;
+  const VkExtent2D size = window_.framebufferSize();
+  const int width = std::max(1, static_cast<int>(std::lround(std::max(1u, size.width) * renderScale())));
+  const int height = std::max(1, static_cast<int>(std::lround(std::max(1u, size.height) * renderScale())));
+  cloud->navigator =
+      std::make_unique<Navigator>(Eigen::Vector3d(bounds.min[0], bounds.min[1], bounds.min[2]),
+                                  Eigen::Vector3d(bounds.max[0], bounds.max[1], bounds.max[2]), width, height);
+  if (home) cloud->navigator->setHome(*home);
+  cloud->grow = std::make_unique<GrowSession>(jobs_, *cloud->cache, [this](const GrowUpdate& update) {
+    scene_.applyGrow(update);
+    grow_panel_.last_update = update;
+  });
+  cloud->renderer->setPresentHook([this](VkCommandBuffer commands, const gpu::SwapchainImage& image) {
+    imgui_.record(commands, image);
+    if (pending_screenshot_) screenshots_.record(commands, image);
+  });
+  cloud_ = std::move(cloud);
+  window_.setTitle("Plumb - " + (options_.cloud.empty() ? std::string("demo office scan") : options_.cloud));
+}
+
+// --- the frame loop ----------------------------------------------------------------------------
+
+int Viewer::run() {
+  while (!quit_) {
+    const Clock::time_point now = Clock::now();
+    frame_ms_ = std::chrono::duration<double, std::milli>(now - last_frame_).count();
+    last_frame_ = now;
+    frame_ms_avg_ = frames_ == 0 ? frame_ms_ : frame_ms_avg_ + 0.1 * (frame_ms_ - frame_ms_avg_);
+    ++frames_;
+
+    // An idle viewer sleeps in the event loop: nothing moves, nothing grows, nothing streams.
+    const bool busy = script_ || !cloud_ || (cloud_->grow && cloud_->grow->busy()) || !streamingIdle() ||
+                      (cloud_->navigator && cloud_->navigator->flying()) || frames_ < 3;
+    std::vector<InputEvent> events = window_.takeEvents(!busy, 0.5);
+
+    std::optional<std::string> screenshot;
+    if (script_) {
+      const bool grower_idle = cloud_ && !(cloud_->grow && cloud_->grow->busy());
+      ScriptFrame frame = script_->next(grower_idle, cloud_ && streamingIdle());
+      if (frame.failure) {
+        std::fprintf(stderr, "plumb view: %s: %s\n", options_.script.c_str(), frame.failure->c_str());
+        exit_status_ = 1;
+        break;
+      }
+      if (frame.finished) break;
+      events.insert(events.end(), frame.events.begin(), frame.events.end());
+      if (frame.tool) setTool(*frame.tool);
+      if (frame.resize) window_.resize(frame.resize->first, frame.resize->second);
+      if (frame.click_world && cloud_) {
+        const std::optional<Eigen::Vector2d> pixel = view::pixelOf(cloud_->navigator->camera(), *frame.click_world);
+        if (!pixel) {
+          std::fprintf(stderr, "plumb view: %s: click_world: the point is behind the camera\n",
+                       options_.script.c_str());
+          exit_status_ = 1;
+          break;
+        }
+        const double x = pixel->x() / renderScale(), y = pixel->y() / renderScale();
+        events.push_back({.kind = InputEvent::Kind::kMouseMove, .x = x, .y = y});
+        events.push_back({.kind = InputEvent::Kind::kMouseButton,
+                          .x = x,
+                          .y = y,
+                          .button = GLFW_MOUSE_BUTTON_LEFT,
+                          .pressed = true});
+        events.push_back({.kind = InputEvent::Kind::kMouseButton,
+                          .x = x,
+                          .y = y,
+                          .button = GLFW_MOUSE_BUTTON_LEFT,
+                          .pressed = false});
+      }
+      screenshot = frame.screenshot;
+    }
+
+    for (const InputEvent& event : events) imgui_.feed(event);
+    jobs_.drainContinuations();  // grow snapshots into the scene, a finished import
+
+    const VkExtent2D size = window_.framebufferSize();
+    if (size.width == 0 || size.height == 0) {
+      handleEvents(events);  // a close while minimised
+      continue;
+    }
+    imgui_.beginFrame(size.width, size.height, frame_ms_ * 1e-3);
+    handleEvents(events);
+    drawPanels();
+    imgui_.endFrame();
+    render(screenshot.has_value(), screenshot.value_or(""));
+  }
+  if (!options_.dump_scene.empty()) {
+    AtomicFile file(options_.dump_scene);
+    const std::string json = scene_.toJson();
+    file.write(json.data(), json.size());
+    file.finish();
+    file.commit();
+  }
+  const std::vector<std::string> messages = instance_.validationMessages();
+  for (const std::string& message : messages) std::fprintf(stderr, "plumb view: validation: %s\n", message.c_str());
+  if (!messages.empty()) exit_status_ = 1;
+  return exit_status_;
+}
+
+double Viewer::renderScale() const {
+  return static_cast<double>(render_scale_);
+}
+
+bool Viewer::streamingIdle() const {
+  return cloud_ && last_stats_.frame > 0 && last_stats_.complete();
+}
+
+void Viewer::handleEvents(const std::vector<InputEvent>& events) {
+  for (const InputEvent& event : events) {
+    if (event.kind == InputEvent::Kind::kMouseMove || event.kind == InputEvent::Kind::kMouseButton) {
+      mouse_x_ = event.x;
+      mouse_y_ = event.y;
+    }
+    if (event.kind == InputEvent::Kind::kClose) {
+      quit_ = true;
+      continue;
+    }
+    const bool mouse = event.kind == InputEvent::Kind::kMouseMove || event.kind == InputEvent::Kind::kMouseButton ||
+                       event.kind == InputEvent::Kind::kWheel;
+    const bool keyboard = event.kind == InputEvent::Kind::kKey || event.kind == InputEvent::Kind::kCharacter;
+    // The palette has the mouse unless a drag on the view is under way (a release must end it).
+    const bool dragging = cloud_ && cloud_->navigator->dragging();
+    if (mouse && imgui_.wantsMouse() && !dragging) continue;
+    if (keyboard && imgui_.wantsKeyboard()) continue;
+    handleViewEvent(event);
+  }
+}
+
+void Viewer::handleViewEvent(const InputEvent& event) {
+  if (event.kind == InputEvent::Kind::kKey && event.pressed) {
+    const bool control = (event.mods & GLFW_MOD_CONTROL) != 0;
+    if (control && event.key == GLFW_KEY_Z) return undo();
+    if (control && event.key == GLFW_KEY_Y) return redo();
+    if (event.key == GLFW_KEY_DELETE) return deleteSelected();
+    if (event.key == GLFW_KEY_ESCAPE) {
+      if (cloud_ && cloud_->grow) cloud_->grow->cancel();
+      return;
+    }
+    if (!control && event.key == GLFW_KEY_N) return setTool(Tool::kNavigate);
+    if (!control && event.key == GLFW_KEY_G) return setTool(Tool::kGrow);
+    if (!control && event.key == GLFW_KEY_M) return setTool(Tool::kMeasure);
+  }
+  if (!cloud_) return;
+  // The view works in render pixels (the window's, times the render scale).
+  InputEvent scaled = event;
+  scaled.x *= renderScale();
+  scaled.y *= renderScale();
+  const bool clicked = cloud_->navigator->handle(scaled, [this](double x, double y) { return pickAt(x, y); });
+  if (clicked) click(scaled.x, scaled.y);
+}
+
+std::optional<Eigen::Vector3d> Viewer::pickAt(double x_px, double y_px) {
+  if (!cloud_ || last_stats_.frame == 0) return std::nullopt;
+  const std::optional<render::PickedPoint> picked =
+      cloud_->renderer->pick(static_cast<int>(x_px), static_cast<int>(y_px), 4);
+  if (!picked) return std::nullopt;
+  return Eigen::Vector3d(picked->position[0], picked->position[1], picked->position[2]);
+}
+
+void Viewer::click(double x_px, double y_px) {
+  const Tool tool = scene_.tool().active;
+  if (tool == Tool::kNavigate) return;
+  const std::optional<Eigen::Vector3d> picked = pickAt(x_px, y_px);
+  if (!picked) return;  // the background: nothing to grow from or measure to
+  if (tool == Tool::kGrow) return startGrow(*picked);
+  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
+    if (!state.measure_started || state.measure_done) {
+      state.measure_started = true;
+      state.measure_done = false;
+      state.measure_from = *picked;
+    } else {
+      state.measure_to = *picked;
+      state.measure_done = true;
+    }
+  });
+}
+
+void Viewer::startGrow(const Eigen::Vector3d& picked) {
+  const view::Camera& camera = cloud_->navigator->camera();
+  reco::ViewAtClick view;
+  view.view = view::viewMatrix(camera);
+  view.projection = view::projectionMatrix(camera);
+  view.viewport_width_px = camera.viewport_width_px / renderScale();  // the screen the user sees
+  view.viewport_height_px = camera.viewport_height_px / renderScale();
+  view.picked = picked;
+  reco::ParameterConstants constants;
+  constants.plane_threshold_m = grow_panel_.plane_threshold_m;
+  reco::GrowParameters parameters = reco::parametersForView(view, constants);
+  if (grow_panel_.detail > 0) {
+    const lod::Octree& octree = *cloud_->octree;
+    const double density = grow_panel_.detail == 1   ? constants.min_density
+                           : grow_panel_.detail == 2 ? std::sqrt(constants.min_density * constants.max_density)
+                           : grow_panel_.detail == 3 ? constants.max_density
+                                                     : std::pow(octree.spacing(octree.header().depth), -3.0);
+    parameters = reco::parametersForDensity(picked, density, parameters.seed_radius_m, constants);
+  }
+  // Cancel first: the old grow's live outline goes now, and its late snapshots are dropped.
+  scene_.dropLive();
+  cloud_->grow->start(parameters);
+  grow_panel_.last = parameters;
+  grow_panel_.last_update.reset();
+}
+
+void Viewer::setTool(Tool tool) {
+  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
+    state.active = tool;
+    if (tool != Tool::kMeasure) state.measure_started = state.measure_done = false;
+  });
+}
+
+void Viewer::undo() {
+  scene_.history().undo();
+}
+
+void Viewer::redo() {
+  scene_.history().redo();
+}
+
+void Viewer::deleteSelected() {
+  scene_.deleteSelected();
+}
+
+// --- drawing -----------------------------------------------------------------------------------
+
+void Viewer::render(bool screenshot, const std::string& screenshot_name) {
+  if (!cloud_) {
+    presentInterfaceOnly();
+    if (screenshot) std::fprintf(stderr, "plumb view: no screenshot before the cloud is loaded\n");
+    return;
+  }
+  const VkExtent2D size = window_.framebufferSize();
+  const int width = std::max(1, static_cast<int>(std::lround(size.width * renderScale())));
+  const int height = std::max(1, static_cast<int>(std::lround(size.height * renderScale())));
+  cloud_->navigator->setViewport(width, height);
+  cloud_->navigator->update(frame_ms_ * 1e-3);
+  cloud_->renderer->setOverlay(overlay_.update(scene_.registry()));
+  const std::optional<gpu::SwapchainImage> image = swapchain_.acquire();
+  if (!image) return;
+  pending_screenshot_ = screenshot && swapchain_.readable();
+  last_stats_ = cloud_->renderer->render(cloud_->navigator->camera(), settings_, render::NodeLoading::kStream, &*image);
+  swapchain_.present(*image);
+  if (screenshot) {
+    if (!pending_screenshot_) {
+      std::fprintf(stderr, "plumb view: this window system's images cannot be read back: no screenshot\n");
+      exit_status_ = 1;
+    } else {
+      cloud_->renderer->waitForFrames();
+      writeScreenshot(screenshot_name);
+    }
+    pending_screenshot_ = false;
+  }
+}
+
+void Viewer::writeScreenshot(const std::string& name) {
+  std::optional<io::RgbaImage> image = screenshots_.take();
+  if (!image) return;
+  const std::filesystem::path directory = options_.screenshot_dir.empty() ? "." : options_.screenshot_dir;
+  std::filesystem::create_directories(directory);
+  io::writePng(*image, (directory / name).string());
+  std::printf("plumb view: screenshot %s\n", (directory / name).string().c_str());
+}
+
+// Before a cloud is ready: the palette (with the loading progress) on a cleared image.
+void Viewer::presentInterfaceOnly() {
+  const std::optional<gpu::SwapchainImage> image = swapchain_.acquire();
+  if (!image) return;
+  if (ui_frames_ >= 1) ui_timeline_.wait(ui_frames_, UINT64_MAX);
+  ui_commands_.reset();
+  VkCommandBuffer commands = ui_commands_.begin();
+  gpu::imageBarrier(commands, image->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                    VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  const render::Rgba& b = settings_.background;
+  const VkClearColorValue clear{{b[0] / 255.0f, b[1] / 255.0f, b[2] / 255.0f, 1.0f}};
+  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(commands, image->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
+  imgui_.record(commands, *image);
+  gpu::submit(device_, commands, ui_timeline_, ++ui_frames_, image->acquired,
+              VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, image->rendered);
+  swapchain_.present(*image);
+}
+
+}  // namespace plumb::viewer

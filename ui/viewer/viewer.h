@@ -1,0 +1,138 @@
+#pragma once
+// The viewer's frame loop and state (viewer_app.h is the entry point). Internal to ui/viewer:
+// viewer.cpp runs frames, viewer_panels.cpp draws the palette.
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/gpu/commands.h"
+#include "engine/gpu/device.h"
+#include "engine/gpu/instance.h"
+#include "engine/gpu/memory.h"
+#include "engine/gpu/swapchain.h"
+#include "engine/gpu/timeline.h"
+#include "engine/jobs/job_system.h"
+#include "engine/render/point_renderer.h"
+#include "reco/parameters.h"
+#include "ui/viewer/grow_session.h"
+#include "ui/viewer/imgui_layer.h"
+#include "ui/viewer/navigation.h"
+#include "ui/viewer/scene_overlay.h"
+#include "ui/viewer/scene_state.h"
+#include "ui/viewer/screenshot.h"
+#include "ui/viewer/session_script.h"
+#include "ui/viewer/viewer_app.h"
+#include "ui/viewer/window.h"
+
+namespace plumb::lod {
+class NodeCache;
+class Octree;
+}  // namespace plumb::lod
+
+namespace plumb::viewer {
+
+// What the loaded cloud brings; made when the cloud is ready (an import runs in the background).
+struct LoadedCloud {
+  std::shared_ptr<const lod::Octree> octree;
+  std::string temporary;  // an imported octree's file, removed with the cloud
+  std::unique_ptr<lod::NodeCache> cache;
+  std::unique_ptr<render::PointRenderer> renderer;
+  std::unique_ptr<Navigator> navigator;
+  std::unique_ptr<GrowSession> grow;
+  ~LoadedCloud();
+};
+
+// Progress of the background work that brings the cloud (demo generation, an import).
+struct LoadProgress {
+  std::mutex mutex;
+  std::string phase = "starting";
+  double fraction = 0.0;
+  std::optional<std::string> error;
+};
+
+// The grow tool's panel values: the user's settings and what the last click derived.
+struct GrowPanel {
+  float plane_threshold_m = 0.02f;  // t_p
+  int detail = 0;                   // 0 from the view, then low, medium, high, full
+  std::optional<reco::GrowParameters> last;
+  std::optional<GrowUpdate> last_update;  // its newest snapshot's statistics
+};
+
+class Viewer {
+ public:
+  explicit Viewer(const ViewerOptions& options);
+  ~Viewer();
+  int run();
+
+ private:
+  // --- frame steps (viewer.cpp) ---
+  void startLoading();
+  void openCloud(std::shared_ptr<const lod::Octree> octree, std::string temporary, std::optional<view::Camera> home);
+  void handleEvents(const std::vector<InputEvent>& events);
+  void handleViewEvent(const InputEvent& event);
+  void click(double x_px, double y_px);
+  void startGrow(const Eigen::Vector3d& picked);
+  void setTool(Tool tool);
+  void undo();
+  void redo();
+  void deleteSelected();
+  void render(bool screenshot, const std::string& screenshot_name);
+  void presentInterfaceOnly();
+  std::optional<Eigen::Vector3d> pickAt(double x_px, double y_px);
+  double renderScale() const;
+  bool streamingIdle() const;
+  void writeScreenshot(const std::string& name);
+
+  // --- the palette (viewer_panels.cpp) ---
+  void drawPanels();
+  void drawToolsPanel();
+  void drawGrowPanel();
+  void drawSegmentsPanel();
+  void drawViewPanel();
+  void drawStatusBar();
+
+  ViewerOptions options_;
+  WindowSystem windows_;
+  gpu::Instance instance_;
+  Window window_;
+  VkSurfaceKHR surface_;  // made before the device (which must present to it); the swapchain owns it
+  gpu::Device device_;
+  gpu::Swapchain swapchain_;
+  gpu::MemoryAllocator allocator_;
+  ImguiLayer imgui_;
+  ScreenshotCopy screenshots_;
+  jobs::JobSystem jobs_;  // before the cloud: the cache waits for loads the jobs run
+  SceneState scene_;
+  SceneOverlay overlay_;
+  std::unique_ptr<LoadedCloud> cloud_;
+  std::shared_ptr<LoadProgress> load_progress_ = std::make_shared<LoadProgress>();
+  jobs::JobHandle load_job_;
+
+  // Presenting the palette alone while no cloud is loaded yet.
+  gpu::CommandPool ui_commands_;
+  gpu::TimelineSemaphore ui_timeline_;
+  std::uint64_t ui_frames_ = 0;
+
+  bool pending_screenshot_ = false;  // the present hook copies this frame's image
+  std::optional<ScriptPlayer> script_;
+  int exit_status_ = 0;
+  bool quit_ = false;
+
+  render::RenderSettings settings_;
+  float render_scale_ = 1.0f;
+  render::FrameStats last_stats_;
+  GrowPanel grow_panel_;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point last_frame_ = Clock::now();
+  double frame_ms_ = 0.0;      // the last frame, start to start
+  double frame_ms_avg_ = 0.0;  // smoothed, for the palette
+  std::uint64_t frames_ = 0;
+  double mouse_x_ = 0.0, mouse_y_ = 0.0;  // window pixels
+};
+
+}  // namespace plumb::viewer

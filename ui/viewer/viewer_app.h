@@ -1,0 +1,35 @@
+#pragma once
+// The desktop viewer (plumb view): a window on the cloud, navigation, the Dear ImGui palette,
+// and live region growing on click. One main thread runs the frame loop; grows, node loads and
+// imports run on the job system; their results come back as continuations drained once per
+// frame, before the frame reads the scene.
+//
+//   frame: window events (or the script's) -> ImGui -> continuations (grow updates into the
+//          ECS) -> tools and navigation -> palette -> overlay from the ECS -> render, present
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "engine/view/camera.h"
+
+namespace plumb::viewer {
+
+struct ViewerOptions {
+  std::string cloud;                   // an octree or a point file (imported in the background); empty: the demo
+  std::string script;                  // a session script (session_script.h); empty: interactive
+  std::string screenshot_dir;          // where the script's screenshots go
+  std::string dump_scene;              // the scene as JSON when the viewer closes
+  std::optional<view::Camera> camera;  // the first view; default: the demo's or an iso view of the cloud
+  int width = 1280, height = 720;
+  std::string gpu;                  // DeviceChoice::prefer; empty: PLUMB_GPU or automatic
+  std::uint64_t budget_points = 0;  // 0: the device's default (lower on the CPU)
+  double render_scale = 0.0;        // 0: the device's default (half resolution on the CPU)
+};
+
+// Runs the viewer until its window closes or its script ends. Returns the exit status: non-zero
+// when a script step failed or the validation layer reported anything. Throws plumb::Error for
+// what stops it from starting (no display, no Vulkan device, an unreadable cloud or script).
+int runViewer(const ViewerOptions& options);
+
+}  // namespace plumb::viewer
