@@ -274,3 +274,37 @@ TEST_F(Cli, RenderRejectsBadArgumentsAndWritesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+// plumb view where no display answers (no DISPLAY, no WAYLAND_DISPLAY): the headless demo.
+TEST_F(Cli, ViewWithoutADisplayRunsTheHeadlessDemo) {
+  const std::string environment =
+      "env -u DISPLAY -u WAYLAND_DISPLAY XDG_CACHE_HOME=" + path("cache") + " PLUMB_GPU=cpu ";
+  const std::string command = environment + PLUMB_BINARY + " view --headless-out " + path("demo.png") +
+                              " </dev/null >" + path("out.txt") + " 2>" + path("err.txt");
+  const int status = std::system(command.c_str());
+  const std::string out = plumb::test::readFile(path("out.txt"));
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out << plumb::test::readFile(path("err.txt"));
+  EXPECT_NE(out.find("no display here; running the headless demo instead"), std::string::npos) << out;
+  EXPECT_NE(out.find("grew "), std::string::npos) << out;
+  const plumb::io::RgbaImage image = plumb::io::readPng(path("demo.png"));
+  EXPECT_EQ(image.width, 1280);
+  EXPECT_EQ(image.height, 720);
+  // The demo was made once into the cache: its octree and truth are there for the next run.
+  std::size_t cached = 0;
+  for (const auto& entry : fs::directory_iterator(path("cache") + "/plumb")) {
+    cached += entry.path().extension() == ".plumb" || entry.path().extension() == ".json";
+  }
+  EXPECT_EQ(cached, 2u);
+
+  // A script needs a window: said clearly, nothing else done.
+  plumb::test::writeFile(path("session.json"), "[]");
+  const std::string scripted = environment + PLUMB_BINARY + " view --script " + path("session.json") +
+                               " </dev/null >/dev/null 2>" + path("err.txt");
+  const int scripted_status = std::system(scripted.c_str());
+  EXPECT_TRUE(WIFEXITED(scripted_status) && WEXITSTATUS(scripted_status) == 1);
+  EXPECT_NE(plumb::test::readFile(path("err.txt")).find("--script needs a display"), std::string::npos);
+}
+
+}  // namespace

@@ -45,6 +45,10 @@ Command addViewCommand(CLI::App& plumb) {
                   "Render the cloud at this fraction of the window's resolution (default 0.5 on the CPU, else 1)")
       ->check(CLI::Range(0.1, 1.0));
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
+  sub->add_flag("!--fixed-quality", options->adaptive_quality,
+                "Render a moving view as a still one (by default it drops resolution and points to keep 30 fps)");
+  sub->add_flag("--profile", options->profile,
+                "With --script: time the splat and the resolve of each moving frame on the GPU and print them");
   sub->add_option("--headless-out", *headless_out,
                   "The headless demo's PNG (default: the cache directory's demo-view.png)");
 

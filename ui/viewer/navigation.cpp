@@ -37,9 +37,9 @@ void Navigator::set(const view::Camera& camera) {
 void Navigator::setViewport(int width_px, int height_px) {
   if (width_px <= 0 || height_px <= 0) return;
   if (camera_.viewport_width_px == width_px && camera_.viewport_height_px == height_px) return;
+  // Not a change of view: a moving view renders at a lower resolution than a still one.
   camera_.viewport_width_px = home_.viewport_width_px = width_px;
   camera_.viewport_height_px = home_.viewport_height_px = height_px;
-  changed_ = true;
 }
 
 void Navigator::setCamera(const view::Camera& camera) {

@@ -4,6 +4,7 @@
 #include <GLFW/glfw3.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +23,7 @@ namespace plumb::viewer {
 namespace {
 
 constexpr std::size_t kNodeCacheBytes = std::size_t{1} << 30;
+constexpr double kMovingFrameMs = 1000.0 / 30.0;  // what a moving view aims for
 
 bool isOctree(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -66,6 +68,8 @@ Viewer::Viewer(const ViewerOptions& options)
   // resolution and a million points keep navigation near 30 frames per second.
   const bool cpu = device_.isCpu();
   render_scale_ = static_cast<float>(options.render_scale > 0.0 ? options.render_scale : (cpu ? 0.5 : 1.0));
+  moving_scale_ = render_scale_;
+  adaptive_quality_ = options.adaptive_quality;
   settings_.selection.point_budget = options.budget_points > 0 ? options.budget_points : (cpu ? 1'000'000 : 5'000'000);
   jobs_.setWakeUp([] { Window::wakeUp(); });
   if (!options.script.empty()) script_.emplace(readSessionScript(options.script));
@@ -139,11 +143,15 @@ void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string te
     jobs_.submit(jobs::Priority::streaming, "load node",
                  [work = std::move(work)](const jobs::CancelToken&) { work(); });
   });
-  cloud->renderer = std::make_unique<render::PointRenderer>(device_, allocator_, *cloud->cache);
+  render::RendererOptions renderer_options;
+  renderer_options.gpu_timing = options_.profile;
+  cloud->renderer = std::make_unique<render::PointRenderer>(device_, allocator_, *cloud->cache, renderer_options);
   const lod::Box3& bounds = cloud->octree->header().bounds;
   const VkExtent2D size = window_.framebufferSize();
-  const int width = std::max(1, static_cast<int>(std::lround(std::max(1u, size.width) * renderScale())));
-  const int height = std::max(1, static_cast<int>(std::lround(std::max(1u, size.height) * renderScale())));
+  const int width =
+      std::max(1, static_cast<int>(std::lround(std::max(1u, size.width) * static_cast<double>(render_scale_))));
+  const int height =
+      std::max(1, static_cast<int>(std::lround(std::max(1u, size.height) * static_cast<double>(render_scale_))));
   cloud->navigator =
       std::make_unique<Navigator>(Eigen::Vector3d(bounds.min[0], bounds.min[1], bounds.min[2]),
                                   Eigen::Vector3d(bounds.max[0], bounds.max[1], bounds.max[2]), width, height);
@@ -168,6 +176,8 @@ int Viewer::run() {
     frame_ms_ = std::chrono::duration<double, std::milli>(now - last_frame_).count();
     last_frame_ = now;
     frame_ms_avg_ = frames_ == 0 ? frame_ms_ : frame_ms_avg_ + 0.1 * (frame_ms_ - frame_ms_avg_);
+    if (last_frame_moved_) moving_frame_ms_.push_back(frame_ms_);
+    last_frame_moved_ = false;
     ++frames_;
 
     // An idle viewer sleeps in the event loop: nothing moves, nothing grows, nothing streams.
@@ -233,14 +243,38 @@ int Viewer::run() {
     file.finish();
     file.commit();
   }
+  if (script_ && !moving_frame_ms_.empty()) {
+    // What navigation costs here: the frames whose camera moved, start to start.
+    std::vector<double> sorted = moving_frame_ms_;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2], p90 = sorted[sorted.size() * 9 / 10];
+    std::printf(
+        "plumb view: %zu moving frames: median %.1f ms (%.1f fps), 90th percentile %.1f ms; budget %llu "
+        "points, render scale %.2f (%.2f at the end of the last move), %s\n",
+        sorted.size(), median, 1e3 / median, p90, static_cast<unsigned long long>(settings_.selection.point_budget),
+        static_cast<double>(render_scale_), adaptive_quality_ ? moving_scale_ : static_cast<double>(render_scale_),
+        device_.name().c_str());
+  }
+  if (!splat_ms_.empty()) {
+    const auto median = [](std::vector<double> values) {
+      std::sort(values.begin(), values.end());
+      return values[values.size() / 2];
+    };
+    std::printf("plumb view: GPU time of a moving frame: splat %.1f ms, resolve %.1f ms (medians)\n", median(splat_ms_),
+                median(resolve_ms_));
+  }
   const std::vector<std::string> messages = instance_.validationMessages();
   for (const std::string& message : messages) std::fprintf(stderr, "plumb view: validation: %s\n", message.c_str());
   if (!messages.empty()) exit_status_ = 1;
   return exit_status_;
 }
 
+// The scale of the view the navigator holds: the last frame's, which the events of this frame
+// refer to (a moving view renders at a lower scale than a still one).
 double Viewer::renderScale() const {
-  return static_cast<double>(render_scale_);
+  const VkExtent2D size = window_.framebufferSize();
+  if (!cloud_ || size.width == 0) return static_cast<double>(render_scale_);
+  return static_cast<double>(cloud_->navigator->camera().viewport_width_px) / size.width;
 }
 
 bool Viewer::streamingIdle() const {
@@ -370,17 +404,37 @@ void Viewer::render(bool screenshot, const std::string& screenshot_name) {
     if (screenshot) std::fprintf(stderr, "plumb view: no screenshot before the cloud is loaded\n");
     return;
   }
-  const VkExtent2D size = window_.framebufferSize();
-  const int width = std::max(1, static_cast<int>(std::lround(size.width * renderScale())));
-  const int height = std::max(1, static_cast<int>(std::lround(size.height * renderScale())));
-  cloud_->navigator->setViewport(width, height);
+  // A moving view trades resolution and points for frame rate (dynamic resolution): towards
+  // kMovingFrameMs, never below a quarter of the still view's scale; a still view is drawn in
+  // full. The point budget follows the pixels, so the points per pixel stay the same.
   cloud_->navigator->update(frame_ms_ * 1e-3);
+  last_frame_moved_ = cloud_->navigator->takeChanged();
+  if (last_frame_moved_ && adaptive_quality_) {
+    const double step = std::clamp(std::sqrt(kMovingFrameMs / std::max(frame_ms_, 1.0)), 0.8, 1.25);
+    moving_scale_ = std::clamp(moving_scale_ * step, 0.25 * render_scale_, static_cast<double>(render_scale_));
+  }
+  const double scale = last_frame_moved_ && adaptive_quality_ ? moving_scale_ : render_scale_;
+  render::RenderSettings frame_settings = settings_;
+  const double pixel_share = (scale * scale) / (static_cast<double>(render_scale_) * render_scale_);
+  frame_settings.selection.point_budget = std::max<std::uint64_t>(
+      10'000, static_cast<std::uint64_t>(static_cast<double>(settings_.selection.point_budget) * pixel_share));
+  const VkExtent2D size = window_.framebufferSize();
+  const int width = std::max(1, static_cast<int>(std::lround(size.width * scale)));
+  const int height = std::max(1, static_cast<int>(std::lround(size.height * scale)));
+  cloud_->navigator->setViewport(width, height);
   cloud_->renderer->setOverlay(overlay_.update(scene_.registry()));
   const std::optional<gpu::SwapchainImage> image = swapchain_.acquire();
   if (!image) return;
   pending_screenshot_ = screenshot && swapchain_.readable();
-  last_stats_ = cloud_->renderer->render(cloud_->navigator->camera(), settings_, render::NodeLoading::kStream, &*image);
+  last_stats_ =
+      cloud_->renderer->render(cloud_->navigator->camera(), frame_settings, render::NodeLoading::kStream, &*image);
   swapchain_.present(*image);
+  if (options_.profile && last_frame_moved_) {
+    if (const std::optional<render::GpuTimings> timings = cloud_->renderer->gpuTimings()) {
+      splat_ms_.push_back(timings->splat_ms);
+      resolve_ms_.push_back(timings->resolve_ms);
+    }
+  }
   if (screenshot) {
     if (!pending_screenshot_) {
       std::fprintf(stderr, "plumb view: this window system's images cannot be read back: no screenshot\n");

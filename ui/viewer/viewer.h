@@ -124,7 +124,9 @@ class Viewer {
   bool quit_ = false;
 
   render::RenderSettings settings_;
-  float render_scale_ = 1.0f;
+  float render_scale_ = 1.0f;     // of a still view
+  double moving_scale_ = 1.0;     // of a moving view, adapted to the frame time
+  bool adaptive_quality_ = true;  // lower resolution and budget while moving
   render::FrameStats last_stats_;
   GrowPanel grow_panel_;
   using Clock = std::chrono::steady_clock;
@@ -132,7 +134,10 @@ class Viewer {
   double frame_ms_ = 0.0;      // the last frame, start to start
   double frame_ms_avg_ = 0.0;  // smoothed, for the palette
   std::uint64_t frames_ = 0;
-  double mouse_x_ = 0.0, mouse_y_ = 0.0;  // window pixels
+  bool last_frame_moved_ = false;              // the camera changed in the frame just drawn
+  std::vector<double> moving_frame_ms_;        // frame times while the camera moved (scripted runs report them)
+  std::vector<double> splat_ms_, resolve_ms_;  // GPU times of moving frames (ViewerOptions::profile)
+  double mouse_x_ = 0.0, mouse_y_ = 0.0;       // window pixels
 };
 
 }  // namespace plumb::viewer

@@ -25,6 +25,11 @@ struct ViewerOptions {
   std::string gpu;                  // DeviceChoice::prefer; empty: PLUMB_GPU or automatic
   std::uint64_t budget_points = 0;  // 0: the device's default (lower on the CPU)
   double render_scale = 0.0;        // 0: the device's default (half resolution on the CPU)
+  // Time the splat and the resolve of each moving frame on the GPU and print their medians at
+  // the end of a scripted session (waits for each such frame: the frame rate drops a little).
+  bool profile = false;
+  // While the view moves, render fewer pixels and points to keep 30 frames per second.
+  bool adaptive_quality = true;
 };
 
 // Runs the viewer until its window closes or its script ends. Returns the exit status: non-zero

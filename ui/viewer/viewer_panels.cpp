@@ -186,8 +186,16 @@ void Viewer::drawViewPanel() {
     settings_.selection.point_budget = static_cast<std::uint64_t>(budget_k) * 1000;
   }
   tooltip("The most points a frame draws; fewer is faster");
-  ImGui::SliderFloat("Render scale", &render_scale_, 0.25f, 1.0f, "%.2f");
+  if (ImGui::SliderFloat("Render scale", &render_scale_, 0.25f, 1.0f, "%.2f")) moving_scale_ = render_scale_;
   tooltip("The resolution the cloud renders at, against the window's");
+  ImGui::Checkbox("Faster while moving", &adaptive_quality_);
+  tooltip(
+      "While the view moves, render fewer pixels and points to keep 30 frames per second; a still view is "
+      "drawn in full");
+  if (adaptive_quality_) {
+    ImGui::SameLine();
+    ImGui::Text("(moving: scale %.2f)", moving_scale_);
+  }
   int colour = static_cast<int>(settings_.colour);
   if (colour > 3) colour = 0;
   if (ImGui::Combo("Colour", &colour, kColourModes, IM_ARRAYSIZE(kColourModes))) {
