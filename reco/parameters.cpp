@@ -65,4 +65,18 @@ GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstan
   return p;
 }
 
+double densityForDetail(Detail detail, const ParameterConstants& c, double full_density) {
+  switch (detail) {
+    case Detail::kLow:
+      return c.min_density;
+    case Detail::kMedium:
+      return std::sqrt(c.min_density * c.max_density);
+    case Detail::kHigh:
+      return c.max_density;
+    case Detail::kFull:
+      return full_density;
+  }
+  return full_density;
+}
+
 }  // namespace plumb::reco

@@ -52,6 +52,12 @@ GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstan
 GrowParameters parametersForDensity(const Eigen::Vector3d& seed, double density, double seed_radius_m,
                                     const ParameterConstants& constants = {});
 
+// The detail levels that override what the view implies (plumb grow --detail, the viewer's
+// Grow panel): low, medium and high are the mapping's far, middle (geometric mean) and near
+// densities; full is every point of the octree (`full_density`, its finest level's).
+enum class Detail { kLow, kMedium, kHigh, kFull };
+double densityForDetail(Detail detail, const ParameterConstants& constants, double full_density);
+
 // The size of a pixel at the picked point, metres (perspective: grows with depth; orthographic:
 // constant).
 double pixelSizeAt(const ViewAtClick& view);

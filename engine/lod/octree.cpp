@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 
 #include "engine/core/error.h"
 
@@ -26,6 +27,13 @@ void readAt(int fd, const std::string& path, std::uint64_t offset, std::span<std
 }
 
 }  // namespace
+
+bool Octree::looksLikeOctree(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, kOctreeMagic.size()> magic{};
+  in.read(magic.data(), magic.size());
+  return in.gcount() == static_cast<std::streamsize>(magic.size()) && magic == kOctreeMagic;
+}
 
 std::shared_ptr<const Octree> Octree::open(const std::string& path) {
   std::shared_ptr<Octree> tree(new Octree());

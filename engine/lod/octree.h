@@ -31,6 +31,9 @@ class Octree {
   // Opens and validates `path`. Throws plumb::Error naming the file and the byte offset for a
   // file that is not an octree, is newer than this Plumb, truncated or corrupt.
   static std::shared_ptr<const Octree> open(const std::string& path);
+  // Whether `path` starts with the octree's magic (an octree, or a damaged one open() names);
+  // false for a point file or an unreadable path.
+  static bool looksLikeOctree(const std::string& path);
   ~Octree();
   Octree(const Octree&) = delete;
   Octree& operator=(const Octree&) = delete;

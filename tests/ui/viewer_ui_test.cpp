@@ -113,4 +113,40 @@ TEST(Viewer, AClickOnTheDemoWallGrowsItsPlane) {
   }
 }
 
+// A point file, imported on a background job while the window shows the progress, opened in a
+// camera file's view: a click near a room corner grows its two walls and the ceiling, and the
+// corner they make lies on the simulator's.
+TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
+  const plumb::test::TempDirectory dir;
+  const fs::path ply = dir.file("room.ply"), truth_path = dir.file("room.json");
+  const std::string simulate =
+      std::string("'") + PLUMB_BINARY + "' simulate --scene room --points 300000 --noise-mm 2 " +
+      "--offset 512000,5403000,250 -o '" + ply.string() + "' --truth '" + truth_path.string() + "' >/dev/null";
+  ASSERT_EQ(std::system(simulate.c_str()), 0);
+  const fs::path camera = dir.file("camera.json"), script = dir.file("session.json"), scene = dir.file("scene.json");
+  std::ofstream(camera) << R"({"format": "plumb-camera", "version": 1, "position": [512003.5, 5403002.5, 251.5],
+                            "target": [512007.0, 5403005.0, 252.2], "fov_deg": 70, "viewport": [1280, 720]})";
+  const Eigen::Vector3d corner(512007.0, 5403005.0, 252.5);
+  const Eigen::Vector3d on_ceiling = corner + Eigen::Vector3d(-0.25, -0.25, 0.0);
+  std::ofstream(script) << json::array(
+                               {
+                                   {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+                                   {{"click_world", json::array({on_ceiling.x(), on_ceiling.y(), on_ceiling.z()})}},
+                                   {{"wait", "grower_idle"}, {"timeout_s", 300}},
+                               })
+                               .dump(2);
+  const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu xvfb-run -a -s '-screen 0 1600x900x24' '" +
+                              std::string(PLUMB_BINARY) + "' view '" + ply.string() + "' --camera '" + camera.string() +
+                              "' --script '" + script.string() + "' --dump-scene '" + scene.string() + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const json dump = readJson(scene);
+  ASSERT_GE(dump.at("segments").size(), 3u);
+  double nearest_m = INFINITY;
+  for (const json& found : dump.at("corners"))
+    nearest_m = std::min(nearest_m, (vector3(found.at("position")) - corner).norm());
+  std::printf("%zu segments, %zu corners; the nearest %.2f mm from the true corner\n", dump.at("segments").size(),
+              dump.at("corners").size(), nearest_m * 1e3);
+  EXPECT_LT(nearest_m, 0.005) << "no corner within 5 mm of the room's (2 mm noise)";
+}
+
 }  // namespace

@@ -4,7 +4,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string_view>
 
 #include "engine/lod/octree.h"
@@ -13,20 +12,10 @@
 #include "ui/cli/progress_line.h"
 
 namespace plumb::cli {
-namespace {
-
-bool isOctree(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[8] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == 8 && std::string_view(magic, 8) == "PLUMBOCT";
-}
-
-}  // namespace
 
 CloudInput::CloudInput(const std::string& path, const std::string& command) {
   std::string octree_path = path;
-  if (!isOctree(path)) {
+  if (!lod::Octree::looksLikeOctree(path)) {
     temporary_path_ =
         (std::filesystem::temp_directory_path() / ("plumb-" + command + "-" + std::to_string(::getpid()) + ".plumb"))
             .string();

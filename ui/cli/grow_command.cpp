@@ -84,10 +84,12 @@ Command addGrowCommand(CLI::App& plumb) {
     constants.plane_threshold_m = options->plane_threshold;
     reco::GrowParameters parameters = reco::parametersForView(view, constants);
     if (!options->detail.empty()) {
-      const double density = options->detail == "low"      ? constants.min_density
-                             : options->detail == "medium" ? std::sqrt(constants.min_density * constants.max_density)
-                             : options->detail == "high"   ? constants.max_density
-                                                           : std::pow(octree->spacing(octree->header().depth), -3.0);
+      const reco::Detail detail = options->detail == "low"      ? reco::Detail::kLow
+                                  : options->detail == "medium" ? reco::Detail::kMedium
+                                  : options->detail == "high"   ? reco::Detail::kHigh
+                                                                : reco::Detail::kFull;
+      const double density =
+          reco::densityForDetail(detail, constants, std::pow(octree->spacing(octree->header().depth), -3.0));
       parameters = reco::parametersForDensity(seed, density, parameters.seed_radius_m, constants);
     }
 

@@ -4,11 +4,11 @@
 #include <GLFW/glfw3.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
@@ -24,13 +24,6 @@ namespace {
 
 constexpr std::size_t kNodeCacheBytes = std::size_t{1} << 30;
 constexpr double kMovingFrameMs = 1000.0 / 30.0;  // what a moving view aims for
-
-bool isOctree(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[8] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == 8 && std::string_view(magic, 8) == "PLUMBOCT";
-}
 
 gpu::DeviceChoice deviceChoice(const ViewerOptions& options, VkSurfaceKHR surface) {
   gpu::DeviceChoice choice =
@@ -79,6 +72,12 @@ Viewer::Viewer(const ViewerOptions& options)
 Viewer::~Viewer() {
   if (cloud_ && cloud_->grow) cloud_->grow->cancel();
   jobs_.waitIdle();  // an import or a grow still running finishes (or sees its cancellation) first
+  // An import that finished after the window closed: its octree was never opened.
+  const bool opened = cloud_ && !cloud_->temporary.empty();
+  if (!opened && !load_progress_->temporary.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(load_progress_->temporary, ignored);
+  }
   cloud_.reset();
   vkDeviceWaitIdle(device_.handle());
 }
@@ -95,7 +94,7 @@ void Viewer::startLoading() {
   const std::string cloud = options_.cloud;
   // An octree opens at once; a point file or the demo is made on a background job while the
   // window shows the progress.
-  if (!cloud.empty() && isOctree(cloud)) {
+  if (!cloud.empty() && lod::Octree::looksLikeOctree(cloud)) {
     openCloud(lod::Octree::open(cloud), "", options_.camera);
     return;
   }
@@ -112,6 +111,10 @@ void Viewer::startLoading() {
             temporary =
                 (std::filesystem::temp_directory_path() / ("plumb-view-" + std::to_string(::getpid()) + ".plumb"))
                     .string();
+            {
+              const std::scoped_lock lock(progress->mutex);
+              progress->temporary = temporary;
+            }
             lod::BuildOptions build;
             build.sources = lod::fileSources({cloud});
             build.output = temporary;
@@ -351,7 +354,9 @@ void Viewer::click(double x_px, double y_px) {
   });
 }
 
-void Viewer::startGrow(const Eigen::Vector3d& picked) {
+// The grow parameters of a click at `picked` in the current view, with the panel's t_p and
+// detail; nothing when the point lies behind a perspective camera.
+std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3d& picked) const {
   const view::Camera& camera = cloud_->navigator->camera();
   reco::ViewAtClick view;
   view.view = view::viewMatrix(camera);
@@ -359,20 +364,26 @@ void Viewer::startGrow(const Eigen::Vector3d& picked) {
   view.viewport_width_px = camera.viewport_width_px / renderScale();  // the screen the user sees
   view.viewport_height_px = camera.viewport_height_px / renderScale();
   view.picked = picked;
+  const bool perspective = camera.projection == view::Projection::kPerspective;
+  if (perspective && (view.view * picked.homogeneous()).z() >= 0.0) return std::nullopt;
   reco::ParameterConstants constants;
   constants.plane_threshold_m = grow_panel_.plane_threshold_m;
   reco::GrowParameters parameters = reco::parametersForView(view, constants);
   if (grow_panel_.detail > 0) {
     const lod::Octree& octree = *cloud_->octree;
-    const double density = grow_panel_.detail == 1   ? constants.min_density
-                           : grow_panel_.detail == 2 ? std::sqrt(constants.min_density * constants.max_density)
-                           : grow_panel_.detail == 3 ? constants.max_density
-                                                     : std::pow(octree.spacing(octree.header().depth), -3.0);
+    const double density = reco::densityForDetail(static_cast<reco::Detail>(grow_panel_.detail - 1), constants,
+                                                  std::pow(octree.spacing(octree.header().depth), -3.0));
     parameters = reco::parametersForDensity(picked, density, parameters.seed_radius_m, constants);
   }
+  return parameters;
+}
+
+void Viewer::startGrow(const Eigen::Vector3d& picked) {
+  const std::optional<reco::GrowParameters> parameters = clickParameters(picked);
+  if (!parameters) return;
   // Cancel first: the old grow's live outline goes now, and its late snapshots are dropped.
   scene_.dropLive();
-  cloud_->grow->start(parameters);
+  cloud_->grow->start(*parameters);
   grow_panel_.last = parameters;
   grow_panel_.last_update.reset();
 }

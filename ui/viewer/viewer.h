@@ -53,6 +53,7 @@ struct LoadProgress {
   std::string phase = "starting";
   double fraction = 0.0;
   std::optional<std::string> error;
+  std::string temporary;  // an import's octree, removed by the viewer if it closes before opening it
 };
 
 // The grow tool's panel values: the user's settings and what the last click derived.
@@ -77,6 +78,7 @@ class Viewer {
   void handleViewEvent(const InputEvent& event);
   void click(double x_px, double y_px);
   void startGrow(const Eigen::Vector3d& picked);
+  std::optional<reco::GrowParameters> clickParameters(const Eigen::Vector3d& picked) const;
   void setTool(Tool tool);
   void undo();
   void redo();

@@ -82,8 +82,17 @@ void Viewer::drawGrowPanel() {
   tooltip("The plane threshold: how far a point may lie off its plane. Set it near 3 x the scanner's noise.");
   ImGui::Combo("Detail", &grow_panel_.detail, kDetails, IM_ARRAYSIZE(kDetails));
   tooltip("From the view: nearer views grow finer. The others override the density the view implies.");
+  // Live: what a click at the view's centre would use now (the target's depth); then the
+  // last click's.
+  if (cloud_) {
+    if (const std::optional<reco::GrowParameters> now = clickParameters(cloud_->navigator->camera().target)) {
+      ImGui::TextDisabled("at the view's centre now:");
+      ImGui::Text("r_s %.3f m   d %.0f pts/m^3   r %.4f m", now->seed_radius_m, now->density, now->search_radius_m);
+    }
+  }
   if (grow_panel_.last) {
     const reco::GrowParameters& p = *grow_panel_.last;
+    ImGui::TextDisabled("the last click:");
     ImGui::Text("r_s %.3f m   d %.0f pts/m^3", p.seed_radius_m, p.density);
     ImGui::Text("r %.4f m   t_p %.4f m", p.search_radius_m, p.plane_threshold_m);
     ImGui::Text("pixel %.2f mm at the click", p.pixel_size_m * 1e3);

@@ -44,19 +44,27 @@ reco::GrowParameters parametersAt(const Eigen::Vector3d& seed) {
   return parameters;
 }
 
-TEST(GrowSession, SnapshotsArriveOnTheMainThreadEndingWithTheFinalOne) {
-  const test::TempDirectory dir;
-  const auto octree = buildFloorAndWall(dir);
-  lod::NodeCache cache(octree, 256 << 20);
-  jobs::JobSystem jobs;
+class GrowSessionTest : public ::testing::Test {
+ protected:
+  // Drains continuations, as the viewer's frames do, until the session's final update is in.
+  void runToTheEnd(const GrowSession& session) {
+    while (session.busy()) {
+      jobs_.waitIdle();
+      jobs_.drainContinuations();
+    }
+  }
+
+  const test::TempDirectory dir_;
+  lod::NodeCache cache_{buildFloorAndWall(dir_), 256 << 20};
+  jobs::JobSystem jobs_;
+};
+
+TEST_F(GrowSessionTest, SnapshotsArriveOnTheMainThreadEndingWithTheFinalOne) {
   std::vector<GrowUpdate> updates;
-  GrowSession session(jobs, cache, [&](const GrowUpdate& update) { updates.push_back(update); });
+  GrowSession session(jobs_, cache_, [&](const GrowUpdate& update) { updates.push_back(update); });
   const std::uint64_t grow = session.start(parametersAt({512000.2, 5403001.0, 250.2}));
   EXPECT_TRUE(session.busy());
-  while (session.busy()) {
-    jobs.waitIdle();
-    jobs.drainContinuations();
-  }
+  runToTheEnd(session);
   ASSERT_FALSE(updates.empty());
   for (const GrowUpdate& update : updates) EXPECT_EQ(update.grow, grow);
   EXPECT_TRUE(updates.back().final);
@@ -65,41 +73,26 @@ TEST(GrowSession, SnapshotsArriveOnTheMainThreadEndingWithTheFinalOne) {
   EXPECT_GE(updates.back().first_progress_ms, 0.0);
 }
 
-TEST(GrowSession, ANewerStartDropsTheOlderGrowsSnapshots) {
-  const test::TempDirectory dir;
-  const auto octree = buildFloorAndWall(dir);
-  lod::NodeCache cache(octree, 256 << 20);
-  jobs::JobSystem jobs;
+TEST_F(GrowSessionTest, ANewerStartDropsTheOlderGrowsSnapshots) {
   std::vector<GrowUpdate> updates;
-  GrowSession session(jobs, cache, [&](const GrowUpdate& update) { updates.push_back(update); });
+  GrowSession session(jobs_, cache_, [&](const GrowUpdate& update) { updates.push_back(update); });
   session.start(parametersAt({512000.2, 5403001.0, 250.2}));
   const std::uint64_t second = session.start(parametersAt({512001.5, 5403001.0, 250.0}));
-  while (session.busy()) {
-    jobs.waitIdle();
-    jobs.drainContinuations();
-  }
+  runToTheEnd(session);
   ASSERT_FALSE(updates.empty());
   for (const GrowUpdate& update : updates) EXPECT_EQ(update.grow, second) << "a stale snapshot got through";
   EXPECT_TRUE(updates.back().final);
 }
 
-TEST(GrowSession, CancelEndsTheGrowWithACancelledFinalUpdate) {
-  const test::TempDirectory dir;
-  const auto octree = buildFloorAndWall(dir);
-  lod::NodeCache cache(octree, 256 << 20);
-  jobs::JobSystem jobs;
+TEST_F(GrowSessionTest, CancelEndsTheGrowWithACancelledFinalUpdate) {
   std::optional<GrowUpdate> last;
-  GrowSession session(jobs, cache, [&](const GrowUpdate& update) { last = update; });
+  GrowSession session(jobs_, cache_, [&](const GrowUpdate& update) { last = update; });
   session.start(parametersAt({512000.2, 5403001.0, 250.2}));
   session.cancel();
-  while (session.busy()) {
-    jobs.waitIdle();
-    jobs.drainContinuations();
-  }
+  runToTheEnd(session);
   ASSERT_TRUE(last);
   EXPECT_TRUE(last->final);
-  // Cancelled before or during the grow: either it was skipped (no snapshot at all, then the
-  // final update says cancelled) or it stopped between two cells.
+  // Cancelled before its first cell or between two: the grow says so, unless it had converged.
   EXPECT_TRUE(last->snapshot.cancelled || last->snapshot.converged);
 }
 
