@@ -128,11 +128,19 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
                             "target": [512007.0, 5403005.0, 252.2], "fov_deg": 70, "viewport": [1280, 720]})";
   const Eigen::Vector3d corner(512007.0, 5403005.0, 252.5);
   const Eigen::Vector3d on_ceiling = corner + Eigen::Vector3d(-0.25, -0.25, 0.0);
+  const Eigen::Vector3d on_wall = corner + Eigen::Vector3d(-2.0, 0.0, -1.0);  // the y+ wall, beside the window
   std::ofstream(script) << json::array(
                                {
                                    {{"wait", "streaming_idle"}, {"timeout_s", 300}},
                                    {{"click_world", json::array({on_ceiling.x(), on_ceiling.y(), on_ceiling.z()})}},
                                    {{"wait", "grower_idle"}, {"timeout_s", 300}},
+                                   {{"wait", "frames"}, {"count", 2}},
+                                   // Measure from the corner the planes make to the wall, snapped.
+                                   {{"tool", "measure"}},
+                                   {{"click_world", json::array({corner.x(), corner.y(), corner.z()})}},
+                                   {{"wait", "frames"}, {"count", 2}},
+                                   {{"click_world", json::array({on_wall.x(), on_wall.y(), on_wall.z()})}},
+                                   {{"wait", "frames"}, {"count", 2}},
                                })
                                .dump(2);
   const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu xvfb-run -a -s '-screen 0 1600x900x24' '" +
@@ -147,6 +155,11 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   std::printf("%zu segments, %zu corners; the nearest %.2f mm from the true corner\n", dump.at("segments").size(),
               dump.at("corners").size(), nearest_m * 1e3);
   EXPECT_LT(nearest_m, 0.005) << "no corner within 5 mm of the room's (2 mm noise)";
+  const json& measure = dump.at("measure");
+  ASSERT_FALSE(measure.is_null()) << "the measurement did not happen";
+  EXPECT_EQ(measure.at("from_kind"), "corner");
+  EXPECT_EQ(measure.at("to_kind"), "plane");
+  EXPECT_NEAR(measure.at("distance_m").get<double>(), (on_wall - corner).norm(), 0.005);
 }
 
 }  // namespace

@@ -10,12 +10,14 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/ecs/entity.h"
 #include "reco/outline.h"
 #include "reco/plane.h"
+#include "ui/viewer/snapping.h"
 
 namespace plumb::viewer {
 
@@ -69,11 +71,15 @@ enum class Tool : std::uint8_t { kNavigate, kGrow, kMeasure };
 
 struct ToolState {
   Tool active = Tool::kGrow;
-  // Measure: the first picked point, until the second.
+  // Measure: the first snapped point, until the second.
   bool measure_started = false;
   Eigen::Vector3d measure_from = Eigen::Vector3d::Zero();
   Eigen::Vector3d measure_to = Eigen::Vector3d::Zero();
+  Snap::Kind measure_from_kind = Snap::Kind::kPoint;
+  Snap::Kind measure_to_kind = Snap::Kind::kPoint;
   bool measure_done = false;
+  // What the cursor snaps to now in a drawing tool (features only: a corner, an edge, a plane).
+  std::optional<Snap> hover;
 };
 
 }  // namespace plumb::viewer

@@ -62,6 +62,14 @@ std::shared_ptr<const render::OverlayScene> SceneOverlay::update(const ecs::Regi
       overlay->markers.push_back({tool.measure_to, {80, 255, 120, 255}, 9.0f, true});
       overlay->lines.push_back({tool.measure_from, tool.measure_to, {80, 255, 120, 255}, 2.5f, true});
     }
+    if (tool.hover) {
+      // What the cursor snaps to: yellow for a corner, white for an edge, cyan for a plane.
+      const render::Rgba colour = tool.hover->kind == Snap::Kind::kCorner ? render::Rgba{255, 230, 0, 255}
+                                  : tool.hover->kind == Snap::Kind::kEdge ? render::Rgba{255, 255, 255, 255}
+                                                                          : render::Rgba{0, 230, 255, 255};
+      overlay->markers.push_back(
+          {tool.hover->position, colour, tool.hover->kind == Snap::Kind::kCorner ? 15.0f : 11.0f, true});
+    }
   });
   overlay_ = std::move(overlay);
   return overlay_;

@@ -148,6 +148,8 @@ std::string SceneState::toJson() const {
   if (tool.measure_done) {
     measure = {{"from", vector3(tool.measure_from)},
                {"to", vector3(tool.measure_to)},
+               {"from_kind", snapKindName(tool.measure_from_kind)},
+               {"to_kind", snapKindName(tool.measure_to_kind)},
                {"distance_m", (tool.measure_to - tool.measure_from).norm()}};
   }
   const nlohmann::json scene{{"segments", segments}, {"edges", edges}, {"corners", corners}, {"measure", measure}};

@@ -18,6 +18,7 @@
 #include "engine/lod/octree_builder.h"
 #include "engine/view/camera_controls.h"
 #include "ui/viewer/demo_scan.h"
+#include "ui/viewer/snapping.h"
 
 namespace plumb::viewer {
 namespace {
@@ -235,6 +236,7 @@ int Viewer::run() {
     }
     imgui_.beginFrame(size.width, size.height, frame_ms_ * 1e-3);
     handleEvents(events);
+    updateHover();
     drawPanels();
     imgui_.endFrame();
     render(screenshot.has_value(), screenshot.value_or(""));
@@ -339,19 +341,40 @@ std::optional<Eigen::Vector3d> Viewer::pickAt(double x_px, double y_px) {
 void Viewer::click(double x_px, double y_px) {
   const Tool tool = scene_.tool().active;
   if (tool == Tool::kNavigate) return;
-  const std::optional<Eigen::Vector3d> picked = pickAt(x_px, y_px);
-  if (!picked) return;  // the background: nothing to grow from or measure to
-  if (tool == Tool::kGrow) return startGrow(*picked);
+  if (tool == Tool::kGrow) {
+    const std::optional<Eigen::Vector3d> picked = pickAt(x_px, y_px);
+    if (picked) startGrow(*picked);  // nothing on the background
+    return;
+  }
+  // Measure: from corner, edge, plane or point to another, snapped.
+  const std::optional<Snap> snap = snapCursor(scene_.registry(), cloud_->navigator->camera(), x_px, y_px,
+                                              [this](double x, double y) { return pickAt(x, y); });
+  if (!snap) return;
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
     if (!state.measure_started || state.measure_done) {
       state.measure_started = true;
       state.measure_done = false;
-      state.measure_from = *picked;
+      state.measure_from = snap->position;
+      state.measure_from_kind = snap->kind;
     } else {
-      state.measure_to = *picked;
+      state.measure_to = snap->position;
+      state.measure_to_kind = snap->kind;
       state.measure_done = true;
     }
   });
+}
+
+// In the Measure tool, what the cursor would snap to (features only: no readback of the frame).
+void Viewer::updateHover() {
+  std::optional<Snap> hover;
+  if (cloud_ && scene_.tool().active == Tool::kMeasure && !imgui_.wantsMouse()) {
+    hover = snapCursor(scene_.registry(), cloud_->navigator->camera(), mouse_x_ * renderScale(),
+                       mouse_y_ * renderScale(), {});
+  }
+  const std::optional<Snap>& now = scene_.tool().hover;
+  const bool same = hover.has_value() == now.has_value() &&
+                    (!hover || (hover->kind == now->kind && (hover->position - now->position).norm() < 1e-9));
+  if (!same) scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) { state.hover = hover; });
 }
 
 // The grow parameters of a click at `picked` in the current view, with the panel's t_p and
@@ -372,7 +395,7 @@ std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3
   if (grow_panel_.detail > 0) {
     const lod::Octree& octree = *cloud_->octree;
     const double density = reco::densityForDetail(static_cast<reco::Detail>(grow_panel_.detail - 1), constants,
-                                                  std::pow(octree.spacing(octree.header().depth), -3.0));
+                                                   std::pow(octree.spacing(octree.header().depth), -3.0));
     parameters = reco::parametersForDensity(picked, density, parameters.seed_radius_m, constants);
   }
   return parameters;
@@ -392,6 +415,7 @@ void Viewer::setTool(Tool tool) {
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
     state.active = tool;
     if (tool != Tool::kMeasure) state.measure_started = state.measure_done = false;
+    state.hover.reset();
   });
 }
 

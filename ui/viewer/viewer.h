@@ -80,6 +80,7 @@ class Viewer {
   void startGrow(const Eigen::Vector3d& picked);
   std::optional<reco::GrowParameters> clickParameters(const Eigen::Vector3d& picked) const;
   void setTool(Tool tool);
+  void updateHover();
   void undo();
   void redo();
   void deleteSelected();

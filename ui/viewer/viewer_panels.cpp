@@ -67,10 +67,13 @@ void Viewer::drawToolsPanel() {
   const ToolState& tool = scene_.tool();
   if (tool.active == Tool::kMeasure) {
     if (tool.measure_done) {
-      ImGui::Text("Distance %.4f m", (tool.measure_to - tool.measure_from).norm());
+      ImGui::Text("Distance %.4f m (%s to %s)", (tool.measure_to - tool.measure_from).norm(),
+                  snapKindName(tool.measure_from_kind), snapKindName(tool.measure_to_kind));
     } else {
       ImGui::TextUnformatted(tool.measure_started ? "Click the second point" : "Click the first point");
     }
+    ImGui::TextDisabled("snaps to corners, edges, planes, points");
+    if (tool.hover) ImGui::Text("under the cursor: %s", snapKindName(tool.hover->kind));
   }
   ImGui::End();
 }

@@ -1,0 +1,113 @@
+// Cursor snapping: corners before edges before planes before points, within a pixel radius;
+// a corner with no point near it (a scan shadow) still snaps.
+
+#include "ui/viewer/snapping.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/ecs/registry.h"
+#include "engine/view/camera_controls.h"
+#include "ui/viewer/components.h"
+
+namespace plumb::viewer {
+namespace {
+
+// Three faces of a room's corner at the origin, 2 m each, seen from inside, from (4, 3.5, 2.5):
+//
+//        z
+//        |  wall x = 0 (y, z in [0, 2])
+//        |______ y   wall y = 0 (x, z in [0, 2])
+//       /           floor z = 0 (x, y in [0, 2])
+//      x
+class SnappingTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    camera_.position = {4.0, 3.5, 2.5};
+    camera_.target = {0.5, 0.5, 0.5};
+    camera_.viewport_width_px = 800;
+    camera_.viewport_height_px = 600;
+    const std::array<Eigen::Vector3d, 3> normals{Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                                 Eigen::Vector3d::UnitZ()};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Eigen::Vector3d n = normals[i], u = normals[(i + 1) % 3], v = normals[(i + 2) % 3];
+      Segment segment;
+      segment.plane.valid = true;
+      segment.plane.normal = n;
+      segment.plane.centroid = u + v;  // the face's centre
+      segment.plane.offset = 0.0;
+      auto outline = std::make_shared<reco::PlaneOutline>();
+      outline->origin = Eigen::Vector3d::Zero();
+      outline->axis_u = u;
+      outline->axis_v = v;
+      outline->shape.vertices = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+      outline->shape.triangles = {{0, 1, 2}, {0, 2, 3}};
+      segment.outline = outline;
+      segments_[i] = registry_.create();
+      registry_.emplace(segments_[i], std::move(segment));
+    }
+    // The edges between the walls and the floor, and the corner, as a grow would make them.
+    edge_ = registry_.create();
+    registry_.emplace(edge_, Edge{{segments_[0], segments_[1]}, {0, 0, 0.2}, {0, 0, 1.8}, {0, 0, 1}, 100});
+    corner_ = registry_.create();
+    registry_.emplace(corner_, Corner{{segments_[0], segments_[1], segments_[2]}, {0, 0, 0}, {}});
+  }
+
+  Eigen::Vector2d pixelOf(const Eigen::Vector3d& world) const { return *view::pixelOf(camera_, world); }
+
+  view::Camera camera_;
+  ecs::Registry registry_;
+  std::array<ecs::Entity, 3> segments_{};
+  ecs::Entity edge_, corner_;
+  const PointPicker no_points_ = [](double, double) { return std::optional<Eigen::Vector3d>{}; };
+};
+
+TEST_F(SnappingTest, ACornerWinsWithinTheRadiusEvenWithoutPoints) {
+  const Eigen::Vector2d at = pixelOf({0, 0, 0}) + Eigen::Vector2d(5, -4);
+  const std::optional<Snap> snap = snapCursor(registry_, camera_, at.x(), at.y(), no_points_);
+  ASSERT_TRUE(snap);
+  EXPECT_EQ(snap->kind, Snap::Kind::kCorner);
+  EXPECT_EQ(snap->source, corner_);
+  EXPECT_NEAR(snap->position.norm(), 0.0, 1e-12);
+  EXPECT_NEAR(snap->distance_px, std::hypot(5.0, 4.0), 1e-6);
+}
+
+TEST_F(SnappingTest, NearAnEdgeTheSnapLiesOnItsLine) {
+  const Eigen::Vector3d on_edge(0, 0, 1.2);
+  const Eigen::Vector2d at = pixelOf(on_edge) + Eigen::Vector2d(6, 0);
+  const std::optional<Snap> snap = snapCursor(registry_, camera_, at.x(), at.y(), no_points_);
+  ASSERT_TRUE(snap);
+  EXPECT_EQ(snap->kind, Snap::Kind::kEdge);
+  EXPECT_EQ(snap->source, edge_);
+  EXPECT_NEAR(snap->position.x(), 0.0, 1e-9);
+  EXPECT_NEAR(snap->position.y(), 0.0, 1e-9);
+  EXPECT_NEAR(snap->position.z(), 1.2, 0.02) << "where the cursor's ray passes nearest";
+  // Beyond the support range's end (z = 1.8) the edge does not reach: the wall's plane does.
+  const Eigen::Vector2d past = pixelOf({0, 0, 1.95}) + Eigen::Vector2d(0, 0);
+  const std::optional<Snap> beyond = snapCursor(registry_, camera_, past.x(), past.y() - 14.0, no_points_);
+  EXPECT_TRUE(!beyond || beyond->kind != Snap::Kind::kEdge);
+}
+
+TEST_F(SnappingTest, InsideAnOutlineTheSnapLiesOnThePlane) {
+  const Eigen::Vector3d on_floor(1.2, 1.5, 0.0);
+  const Eigen::Vector2d at = pixelOf(on_floor);
+  const std::optional<Snap> snap = snapCursor(registry_, camera_, at.x(), at.y(), no_points_);
+  ASSERT_TRUE(snap);
+  EXPECT_EQ(snap->kind, Snap::Kind::kPlane);
+  EXPECT_EQ(snap->source, segments_[2]);
+  EXPECT_NEAR((snap->position - on_floor).norm(), 0.0, 1e-6);
+}
+
+TEST_F(SnappingTest, OutsideEveryFeatureAPointOfTheCloudOrNothing) {
+  const Eigen::Vector3d away(3.0, 3.0, 0.0);  // beyond the floor's outline
+  const Eigen::Vector2d at = pixelOf(away);
+  EXPECT_FALSE(snapCursor(registry_, camera_, at.x(), at.y(), no_points_));
+  const PointPicker picks = [&](double, double) { return std::optional<Eigen::Vector3d>(away); };
+  const std::optional<Snap> snap = snapCursor(registry_, camera_, at.x(), at.y(), picks);
+  ASSERT_TRUE(snap);
+  EXPECT_EQ(snap->kind, Snap::Kind::kPoint);
+  EXPECT_EQ(snap->source, ecs::kNullEntity);
+  EXPECT_STREQ(snapKindName(snap->kind), "point");
+}
+
+}  // namespace
+}  // namespace plumb::viewer

@@ -1,0 +1,121 @@
+#include "ui/viewer/snapping.h"
+
+#include <Eigen/Geometry>
+#include <limits>
+
+#include "engine/ecs/registry.h"
+#include "engine/view/camera_controls.h"
+#include "ui/viewer/components.h"
+
+namespace plumb::viewer {
+namespace {
+
+// The point of segment [a, b] nearest to c, as the fraction t along it, clamped to [0, 1].
+double nearestFraction(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  return length2 > 0.0 ? std::clamp((c - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+}
+
+// The point of line p + s d nearest to the ray o + t r (both directions unit); the line
+// parameter s, or nothing when they are parallel.
+std::optional<double> lineParameterNearestRay(const Eigen::Vector3d& p, const Eigen::Vector3d& d,
+                                              const view::Ray& ray) {
+  const double b = d.dot(ray.direction);
+  const double denominator = 1.0 - b * b;
+  if (denominator < 1e-12) return std::nullopt;
+  const Eigen::Vector3d w = p - ray.origin;
+  return (b * w.dot(ray.direction) - w.dot(d)) / denominator;
+}
+
+bool insideTriangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                    const Eigen::Vector2d& c) {
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double d1 = cross(b - a, p - a), d2 = cross(c - b, p - b), d3 = cross(a - c, p - c);
+  const bool negative = d1 < 0 || d2 < 0 || d3<0, positive = d1> 0 || d2 > 0 || d3 > 0;
+  return !(negative && positive);
+}
+
+bool insideOutline(const reco::PlaneOutline& outline, const Eigen::Vector3d& world) {
+  const Eigen::Vector3d local = world - outline.origin;
+  const Eigen::Vector2d p(local.dot(outline.axis_u), local.dot(outline.axis_v));
+  const auto& v = outline.shape.vertices;
+  for (const auto& t : outline.shape.triangles) {
+    if (insideTriangle(p, v[t[0]], v[t[1]], v[t[2]])) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+const char* snapKindName(Snap::Kind kind) {
+  switch (kind) {
+    case Snap::Kind::kCorner:
+      return "corner";
+    case Snap::Kind::kEdge:
+      return "edge";
+    case Snap::Kind::kPlane:
+      return "plane";
+    case Snap::Kind::kPoint:
+      return "point";
+  }
+  return "unknown";
+}
+
+std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera& camera, double x_px, double y_px,
+                               const PointPicker& pick_point, const SnapOptions& options) {
+  const Eigen::Vector2d cursor(x_px, y_px);
+
+  // 1. Corners: the nearest on screen within the radius.
+  std::optional<Snap> best;
+  registry.view<Corner>().each([&](ecs::Entity entity, const Corner& corner) {
+    const std::optional<Eigen::Vector2d> pixel = view::pixelOf(camera, corner.position);
+    if (!pixel) return;
+    const double distance = (*pixel - cursor).norm();
+    if (distance <= options.radius_px && (!best || distance < best->distance_px)) {
+      best = Snap{Snap::Kind::kCorner, corner.position, entity, distance};
+    }
+  });
+  if (best) return best;
+
+  // 2. Edges within their support range: the point of the edge nearest the cursor's ray.
+  const view::Ray ray = view::rayThroughPixel(camera, x_px, y_px);
+  registry.view<Edge>().each([&](ecs::Entity entity, const Edge& edge) {
+    const std::optional<Eigen::Vector2d> a = view::pixelOf(camera, edge.start), b = view::pixelOf(camera, edge.end);
+    if (!a || !b) return;
+    const double t = nearestFraction(*a, *b, cursor);
+    const double distance = (*a + t * (*b - *a) - cursor).norm();
+    if (distance > options.radius_px || (best && distance >= best->distance_px)) return;
+    const double length = (edge.end - edge.start).norm();
+    const Eigen::Vector3d direction = length > 0.0 ? Eigen::Vector3d((edge.end - edge.start) / length) : edge.direction;
+    const double s = std::clamp(lineParameterNearestRay(edge.start, direction, ray).value_or(t * length), 0.0, length);
+    best = Snap{Snap::Kind::kEdge, edge.start + s * direction, entity, distance};
+  });
+  if (best) return best;
+
+  // 3. Planes: the nearest hit of the ray on a segment's plane inside its outline.
+  double nearest_hit = std::numeric_limits<double>::infinity();
+  registry.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
+    if (!segment.outline || !segment.plane.valid) return;
+    const double facing = segment.plane.normal.dot(ray.direction);
+    if (std::abs(facing) < 1e-9) return;
+    const double t = segment.plane.normal.dot(segment.plane.centroid - ray.origin) / facing;
+    if (t <= 0.0 || t >= nearest_hit) return;
+    const Eigen::Vector3d hit = ray.origin + t * ray.direction;
+    if (!insideOutline(*segment.outline, hit)) return;
+    nearest_hit = t;
+    best = Snap{Snap::Kind::kPlane, hit, entity, 0.0};
+  });
+  if (best) return best;
+
+  // 4. A point of the cloud.
+  if (pick_point) {
+    if (const std::optional<Eigen::Vector3d> point = pick_point(x_px, y_px)) {
+      const std::optional<Eigen::Vector2d> pixel = view::pixelOf(camera, *point);
+      return Snap{Snap::Kind::kPoint, *point, ecs::kNullEntity, pixel ? (*pixel - cursor).norm() : 0.0};
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace plumb::viewer

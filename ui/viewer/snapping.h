@@ -1,0 +1,43 @@
+#pragma once
+// Cursor snapping (paper section 4.2): what the pointer means in a drawing tool. In priority
+// order, within a pixel radius: a corner, a point on an edge within its support range, a point
+// on a segment's plane inside its outline, a point of the cloud. Corners and edges come from the
+// planes, not from the points, so a corner in a scan shadow is still a corner.
+
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+
+#include "engine/ecs/entity.h"
+#include "engine/view/camera.h"
+
+namespace plumb::ecs {
+class Registry;
+}
+
+namespace plumb::viewer {
+
+struct Snap {
+  enum class Kind { kCorner, kEdge, kPlane, kPoint };
+  Kind kind = Kind::kPoint;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world coordinates
+  ecs::Entity source = ecs::kNullEntity;               // the Corner, Edge or Segment entity; null for a point
+  double distance_px = 0.0;                            // from the cursor to where the snap appears
+};
+
+const char* snapKindName(Snap::Kind kind);
+
+struct SnapOptions {
+  double radius_px = 12.0;  // corners and edges snap within this many pixels of the cursor
+};
+
+// The cloud's point under a pixel, if any (the renderer's pick); may be empty.
+using PointPicker = std::function<std::optional<Eigen::Vector3d>(double x_px, double y_px)>;
+
+// What the cursor at (x, y) (pixels of `camera`'s viewport) snaps to in `registry` (Corner,
+// Edge and Segment components); `pick_point` is asked only when no feature is near. Nothing
+// when nothing is there.
+std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera& camera, double x_px, double y_px,
+                               const PointPicker& pick_point, const SnapOptions& options = {});
+
+}  // namespace plumb::viewer
