@@ -17,6 +17,7 @@
 #include "ui/cli/cloud_input.h"
 #include "ui/cli/command.h"
 #include "ui/cli/grow_output.h"
+#include "ui/viewer/view_at_click.h"
 
 namespace plumb::cli {
 namespace {
@@ -66,15 +67,9 @@ Command addGrowCommand(CLI::App& plumb) {
     // Read the camera before any work: a bad file is reported at once.
     reco::ViewAtClick view = reco::viewFromDistance(seed, options->view_distance);
     if (!options->camera.empty()) {
-      const view::Camera camera = view::readCameraJson(options->camera);
-      view.view = view::viewMatrix(camera);
-      view.projection = view::projectionMatrix(camera);
-      view.viewport_width_px = camera.viewport_width_px;
-      view.viewport_height_px = camera.viewport_height_px;
-      view.picked = seed;
-      if ((view.view * Eigen::Vector4d(seed.x(), seed.y(), seed.z(), 1.0)).z() >= 0.0) {
-        throw Error(options->camera + ": the seed " + options->seed + " is behind the camera");
-      }
+      const std::optional<reco::ViewAtClick> clicked = viewer::viewAtClick(view::readCameraJson(options->camera), seed);
+      if (!clicked) throw Error(options->camera + ": the seed " + options->seed + " is behind the camera");
+      view = *clicked;
     }
     const CloudInput cloud(options->cloud, "grow");
     const std::shared_ptr<const lod::Octree>& octree = cloud.octree();

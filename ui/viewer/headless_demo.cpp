@@ -16,6 +16,7 @@
 #include "ui/viewer/grow_session.h"
 #include "ui/viewer/scene_overlay.h"
 #include "ui/viewer/scene_state.h"
+#include "ui/viewer/view_at_click.h"
 
 namespace plumb::viewer {
 
@@ -32,16 +33,8 @@ int runHeadlessDemo(const std::string& png_path, const std::string& gpu_name) {
   view::Camera camera = demo.home;
   camera.viewport_width_px = 1280;
   camera.viewport_height_px = 720;
-  const Eigen::Vector3d direction = view::viewDirection(camera);
   const Eigen::Vector3d wall_point(camera.position.x() + 2.4, camera.position.y() - 1.0, camera.position.z() - 0.3);
-  reco::ViewAtClick click;
-  click.view = view::viewMatrix(camera);
-  click.projection = view::projectionMatrix(camera);
-  click.viewport_width_px = camera.viewport_width_px;
-  click.viewport_height_px = camera.viewport_height_px;
-  click.picked = wall_point;
-  (void)direction;
-  const reco::GrowParameters parameters = reco::parametersForView(click);
+  const reco::GrowParameters parameters = reco::parametersForView(*viewAtClick(camera, wall_point));
   const reco::GrowSnapshot result = reco::growRegions(cache, parameters);
   std::printf("  grew %zu segments, %zu edges and %zu corners in %.1f ms at the corridor wall\n",
               result.segments.size(), result.edges.size(), result.corners.size(), result.elapsed_ms);

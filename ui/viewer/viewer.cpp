@@ -4,7 +4,6 @@
 #include <GLFW/glfw3.h>
 #include <unistd.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +18,7 @@
 #include "engine/view/camera_controls.h"
 #include "ui/viewer/demo_scan.h"
 #include "ui/viewer/snapping.h"
+#include "ui/viewer/view_at_click.h"
 
 namespace plumb::viewer {
 namespace {
@@ -58,8 +58,9 @@ Viewer::Viewer(const ViewerOptions& options)
       screenshots_(device_, allocator_),
       ui_commands_(device_, "viewer interface"),
       ui_timeline_(device_) {
-  // On the CPU (lavapipe) a frame costs about 10 ns per pixel and 45 ns per point: half the
-  // resolution and a million points keep navigation near 30 frames per second.
+  // On the CPU (lavapipe) a frame costs about 135 ns per rendered pixel and 22 ns per point on
+  // top of some 30 ms for a 1280 x 720 window (docs/benchmarks.md): a still view renders at half
+  // the resolution and a million points; a moving one lowers both towards 30 frames per second.
   const bool cpu = device_.isCpu();
   render_scale_ = static_cast<float>(options.render_scale > 0.0 ? options.render_scale : (cpu ? 0.5 : 1.0));
   moving_scale_ = render_scale_;
@@ -99,41 +100,39 @@ void Viewer::startLoading() {
     openCloud(lod::Octree::open(cloud), "", options_.camera);
     return;
   }
-  load_job_ =
-      jobs_.submit(jobs::Priority::background, "load cloud", [this, progress, report, cloud](const jobs::CancelToken&) {
-        try {
-          std::string path = cloud, temporary;
-          std::optional<view::Camera> home = options_.camera;
-          if (cloud.empty()) {
-            const DemoScan demo = ensureDemoScan(report);
-            path = demo.octree.string();
-            if (!home) home = demo.home;
-          } else {
-            temporary =
-                (std::filesystem::temp_directory_path() / ("plumb-view-" + std::to_string(::getpid()) + ".plumb"))
-                    .string();
-            {
-              const std::scoped_lock lock(progress->mutex);
-              progress->temporary = temporary;
-            }
-            lod::BuildOptions build;
-            build.sources = lod::fileSources({cloud});
-            build.output = temporary;
-            build.progress = [&](std::string_view phase, std::uint64_t done, std::uint64_t total) {
-              report(std::string("importing ") + std::filesystem::path(cloud).filename().string() + ": " +
-                         std::string(phase),
-                     total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0.0);
-            };
-            lod::buildOctree(build);
-            path = temporary;
-          }
-          std::shared_ptr<const lod::Octree> octree = lod::Octree::open(path);
-          jobs_.post([this, octree, temporary, home] { openCloud(octree, temporary, home); });
-        } catch (const std::exception& error) {
+  jobs_.submit(jobs::Priority::background, "load cloud", [this, progress, report, cloud](const jobs::CancelToken&) {
+    try {
+      std::string path = cloud, temporary;
+      std::optional<view::Camera> home = options_.camera;
+      if (cloud.empty()) {
+        const DemoScan demo = ensureDemoScan(report);
+        path = demo.octree.string();
+        if (!home) home = demo.home;
+      } else {
+        temporary =
+            (std::filesystem::temp_directory_path() / ("plumb-view-" + std::to_string(::getpid()) + ".plumb")).string();
+        {
           const std::scoped_lock lock(progress->mutex);
-          progress->error = error.what();
+          progress->temporary = temporary;
         }
-      });
+        lod::BuildOptions build;
+        build.sources = lod::fileSources({cloud});
+        build.output = temporary;
+        build.progress = [&](std::string_view phase, std::uint64_t done, std::uint64_t total) {
+          report(
+              std::string("importing ") + std::filesystem::path(cloud).filename().string() + ": " + std::string(phase),
+              total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0.0);
+        };
+        lod::buildOctree(build);
+        path = temporary;
+      }
+      std::shared_ptr<const lod::Octree> octree = lod::Octree::open(path);
+      jobs_.post([this, octree, temporary, home] { openCloud(octree, temporary, home); });
+    } catch (const std::exception& error) {
+      const std::scoped_lock lock(progress->mutex);
+      progress->error = error.what();
+    }
+  });
 }
 
 void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string temporary,
@@ -378,24 +377,20 @@ void Viewer::updateHover() {
 }
 
 // The grow parameters of a click at `picked` in the current view, with the panel's t_p and
-// detail; nothing when the point lies behind a perspective camera.
+// detail; nothing when the point lies behind the eye.
 std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3d& picked) const {
   const view::Camera& camera = cloud_->navigator->camera();
-  reco::ViewAtClick view;
-  view.view = view::viewMatrix(camera);
-  view.projection = view::projectionMatrix(camera);
-  view.viewport_width_px = camera.viewport_width_px / renderScale();  // the screen the user sees
-  view.viewport_height_px = camera.viewport_height_px / renderScale();
-  view.picked = picked;
-  const bool perspective = camera.projection == view::Projection::kPerspective;
-  if (perspective && (view.view * picked.homogeneous()).z() >= 0.0) return std::nullopt;
+  // The screen the user sees: the window, not the render's scaled viewport.
+  const std::optional<reco::ViewAtClick> view =
+      viewAtClick(camera, picked, camera.viewport_width_px / renderScale(), camera.viewport_height_px / renderScale());
+  if (!view) return std::nullopt;
   reco::ParameterConstants constants;
   constants.plane_threshold_m = grow_panel_.plane_threshold_m;
-  reco::GrowParameters parameters = reco::parametersForView(view, constants);
+  reco::GrowParameters parameters = reco::parametersForView(*view, constants);
   if (grow_panel_.detail > 0) {
     const lod::Octree& octree = *cloud_->octree;
     const double density = reco::densityForDetail(static_cast<reco::Detail>(grow_panel_.detail - 1), constants,
-                                                   std::pow(octree.spacing(octree.header().depth), -3.0));
+                                                  std::pow(octree.spacing(octree.header().depth), -3.0));
     parameters = reco::parametersForDensity(picked, density, parameters.seed_radius_m, constants);
   }
   return parameters;

@@ -114,7 +114,6 @@ class Viewer {
   SceneOverlay overlay_;
   std::unique_ptr<LoadedCloud> cloud_;
   std::shared_ptr<LoadProgress> load_progress_ = std::make_shared<LoadProgress>();
-  jobs::JobHandle load_job_;
 
   // Presenting the palette alone while no cloud is loaded yet.
   gpu::CommandPool ui_commands_;
