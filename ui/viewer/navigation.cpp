@@ -12,8 +12,9 @@
 namespace plumb::viewer {
 namespace {
 
-constexpr double kClickSlopPx = 4.0;        // a press and release this close is a click
-constexpr double kDoubleClickS = 0.4;       // two clicks this close in time are a double click
+constexpr double kClickSlopPx = 4.0;   // a press and release this close is a click
+constexpr double kDoubleClickS = 0.4;  // two clicks this close in time and place are a double click
+constexpr double kDoubleClickSlopPx = 6.0;
 constexpr double kOrbitRadPerPx = 0.005;    // a drag across 1000 pixels turns by 5 radians
 constexpr double kZoomPerWheelStep = 0.85;  // each wheel step brings the eye 15 % closer
 constexpr double kLookRadPerPx = 0.003;
@@ -148,12 +149,16 @@ bool Navigator::release(const InputEvent& event) {
   drag_button_ = -1;
   drag_ = Drag::kNone;
   if (!click) return false;
-  if (last_click_time_s_ >= 0.0 && clock_s_ - last_click_time_s_ <= kDoubleClickS) {
+  // Quick clicks at different places (a measurement from one corner to another) stay clicks.
+  const bool same_place = std::hypot(event.x - last_click_x_, event.y - last_click_y_) <= kDoubleClickSlopPx;
+  if (last_click_time_s_ >= 0.0 && clock_s_ - last_click_time_s_ <= kDoubleClickS && same_place) {
     last_click_time_s_ = -1.0;
     focus(pivot_);
     return false;
   }
   last_click_time_s_ = clock_s_;
+  last_click_x_ = event.x;
+  last_click_y_ = event.y;
   return true;
 }
 

@@ -5,7 +5,8 @@
 //   left drag        orbit around the point under the cursor at the press (else the target)
 //   right or middle  pan: what lies under the cursor follows it
 //   wheel            zoom towards the point under the cursor
-//   double click     focus: the view turns to the point and moves halfway to it
+//   double click     focus: the view turns to the point and moves halfway to it (two clicks
+//                    within 0.4 s and 6 pixels)
 //   F                fly mode on and off: W A S D move, Q E down and up, left drag looks around,
 //                    Shift faster; the wheel changes the speed
 //   1 2 3 4          top, front, side, iso views (orthographic but iso); O perspective and
@@ -77,6 +78,7 @@ class Navigator {
   double last_x_ = 0.0, last_y_ = 0.0;
   double travelled_px_ = 0.0;
   double last_click_time_s_ = -1.0;
+  double last_click_x_ = 0.0, last_click_y_ = 0.0;
   double clock_s_ = 0.0;  // advanced by update(), for double clicks
 
   // Held keys of the fly mode.

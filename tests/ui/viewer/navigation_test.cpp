@@ -114,6 +114,15 @@ TEST(Navigator, ADoubleClickFocusesOnThePoint) {
   EXPECT_NEAR((navigator.camera().position - point).norm(), 0.5 * distance_before, 1e-6);
 }
 
+TEST(Navigator, TwoQuickClicksAtDifferentPlacesAreTwoClicks) {
+  Navigator navigator(kMin, kMax, 640, 360);
+  navigator.handle(button(320, 180, true), kNothing);
+  EXPECT_TRUE(navigator.handle(button(320, 180, false), kNothing));
+  navigator.update(0.1);
+  navigator.handle(button(400, 220, true), kNothing);
+  EXPECT_TRUE(navigator.handle(button(400, 220, false), kNothing)) << "a measurement's second end, not a focus";
+}
+
 TEST(Navigator, TwoSlowClicksAreTwoClicks) {
   Navigator navigator(kMin, kMax, 640, 360);
   navigator.handle(button(320, 180, true), kNothing);
