@@ -45,6 +45,23 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> intersectionLine(const Plane& a, con
 
 }  // namespace
 
+std::optional<Eigen::Vector3d> cornerOfPlanes(const Plane& a, const Plane& b, const Plane& c, double min_angle_deg) {
+  const double min_sine = std::sin(min_angle_deg * M_PI / 180.0);
+  if (!intersecting(a, b, min_sine) || !intersecting(a, c, min_sine) || !intersecting(b, c, min_sine)) {
+    return std::nullopt;
+  }
+  // Three planes through a common line (a pencil) have no single corner.
+  if (std::abs(a.normal.cross(b.normal).normalized().dot(c.normal)) < min_sine) return std::nullopt;
+  const Eigen::Vector3d reference = (a.centroid + b.centroid + c.centroid) / 3.0;
+  Eigen::Matrix3d m;
+  m.row(0) = a.normal.transpose();
+  m.row(1) = b.normal.transpose();
+  m.row(2) = c.normal.transpose();
+  const Eigen::Vector3d rhs(a.normal.dot(a.centroid - reference), b.normal.dot(b.centroid - reference),
+                            c.normal.dot(c.centroid - reference));
+  return reference + m.partialPivLu().solve(rhs);
+}
+
 Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const FeatureOptions& options) {
   Features features;
   const double min_sine = std::sin(options.min_angle_deg * M_PI / 180.0);
@@ -82,20 +99,10 @@ Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const Fe
     for (std::uint32_t j = i + 1; j < n; ++j) {
       for (std::uint32_t k = j + 1; k < n; ++k) {
         if (!usable(i) || !usable(j) || !usable(k)) continue;
-        const Plane& a = segments[i].plane;
-        const Plane& b = segments[j].plane;
-        const Plane& c = segments[k].plane;
-        if (!intersecting(a, b, min_sine) || !intersecting(a, c, min_sine) || !intersecting(b, c, min_sine)) continue;
-        // Three planes through a common line (a pencil) have no single corner.
-        if (std::abs(a.normal.cross(b.normal).normalized().dot(c.normal)) < min_sine) continue;
-        const Eigen::Vector3d reference = (a.centroid + b.centroid + c.centroid) / 3.0;
-        Eigen::Matrix3d m;
-        m.row(0) = a.normal.transpose();
-        m.row(1) = b.normal.transpose();
-        m.row(2) = c.normal.transpose();
-        const Eigen::Vector3d rhs(a.normal.dot(a.centroid - reference), b.normal.dot(b.centroid - reference),
-                                  c.normal.dot(c.centroid - reference));
-        const Eigen::Vector3d corner = reference + m.partialPivLu().solve(rhs);
+        const std::optional<Eigen::Vector3d> found =
+            cornerOfPlanes(segments[i].plane, segments[j].plane, segments[k].plane, options.min_angle_deg);
+        if (!found) continue;
+        const Eigen::Vector3d& corner = *found;
         // Each segment must reach the corner: a point of it (a vertex of its outline) within 2r.
         const std::array<std::uint32_t, 3> trio{i, j, k};
         const bool all_near = std::all_of(trio.begin(), trio.end(), [&](std::uint32_t s) {
@@ -103,7 +110,8 @@ Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const Fe
                              [&](const Eigen::Vector3d& p) { return (p - corner).squaredNorm() <= near * near; });
         });
         if (!all_near) continue;
-        features.corners.push_back({{i, j, k}, corner, {a.lambda2, b.lambda2, c.lambda2}});
+        features.corners.push_back(
+            {{i, j, k}, corner, {segments[i].plane.lambda2, segments[j].plane.lambda2, segments[k].plane.lambda2}});
       }
     }
   }

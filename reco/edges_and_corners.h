@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -44,6 +45,13 @@ struct Features {
   std::vector<Edge> edges;
   std::vector<Corner> corners;
 };
+
+// The point where three planes meet, or nothing when two of them are closer to parallel than
+// `min_angle_deg` or all three pass through one line. Solved about the centroids' mean, so the
+// result keeps its precision at UTM coordinates. No points are needed: a corner in a scan
+// shadow is still where its planes meet.
+std::optional<Eigen::Vector3d> cornerOfPlanes(const Plane& a, const Plane& b, const Plane& c,
+                                              double min_angle_deg = 10.0);
 
 // All viable pairs (edges) and triples (corners) of segments: planes not parallel, each
 // segment with points (a non-vanishing polygon), and each with points near the intersection.

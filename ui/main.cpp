@@ -19,8 +19,8 @@ int main(int argc, char** argv) {
   plumb.footer("Run 'plumb <command> --help' for the options of a command.");
 
   const std::vector<plumb::cli::Command> commands{
-      plumb::cli::addGrowCommand(plumb), plumb::cli::addImportCommand(plumb), plumb::cli::addInfoCommand(plumb),
-      plumb::cli::addRenderCommand(plumb), plumb::cli::addSimulateCommand(plumb),
+      plumb::cli::addExportCommand(plumb), plumb::cli::addGrowCommand(plumb),   plumb::cli::addImportCommand(plumb),
+      plumb::cli::addInfoCommand(plumb),   plumb::cli::addRenderCommand(plumb), plumb::cli::addSimulateCommand(plumb),
       plumb::cli::addViewCommand(plumb)};
 
   // CLI11 reports a mistyped command only as "A subcommand is required"; name it instead.

@@ -1,5 +1,7 @@
 #include "engine/view/camera_json.h"
 
+#include <algorithm>
+#include <cassert>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -18,8 +20,10 @@ namespace {
 using Json = nlohmann::json;
 
 constexpr std::string_view kFormat = "plumb-camera";
-constexpr const char* kKnownFields[] = {"format",  "version",        "projection", "position", "target", "up",
-                                        "fov_deg", "ortho_height_m", "viewport",   "near_m",   "far_m"};
+// The fields of the file that only a whole camera file has, then those of the camera itself.
+constexpr const char* kFileFields[] = {"format", "version"};
+constexpr const char* kCameraFields[] = {"projection",     "position", "target", "up",   "fov_deg",
+                                         "ortho_height_m", "viewport", "near_m", "far_m"};
 
 std::string readText(const std::string& path) {
   std::error_code ignored;
@@ -84,6 +88,77 @@ Json parse(const std::string& path, const std::string& text) {
   }
 }
 
+// An unknown field is an error, so that a misspelt name is not silently replaced by its default.
+// `prefix` places the object in its file ("" for a camera file, "camera." inside a project).
+void checkKnownFields(const std::string& path, const Json& json, const std::string& prefix, bool camera_file) {
+  std::string known;
+  const auto list = [&known](const char* field) { known += (known.empty() ? "" : ", ") + std::string(field); };
+  if (camera_file) std::for_each(std::begin(kFileFields), std::end(kFileFields), list);
+  std::for_each(std::begin(kCameraFields), std::end(kCameraFields), list);
+  for (const auto& [key, value] : json.items()) {
+    bool is_known = false;
+    for (const char* field : kCameraFields) is_known = is_known || key == field;
+    for (const char* field : kFileFields) is_known = is_known || (camera_file && key == field);
+    if (!is_known) throw fieldError(path, prefix + key, "unknown field (known: " + known + ")");
+  }
+}
+
+// The camera of an object whose fields checkKnownFields accepted.
+Camera cameraFields(const std::string& path, const Json& json, const std::string& prefix) {
+  Camera camera;
+  for (const char* required : {"position", "target"}) {
+    if (!json.contains(required)) {
+      throw fieldError(path, prefix + required, "missing (a camera needs a position and a target)");
+    }
+  }
+  camera.position = vector3(path, prefix + "position", json["position"]);
+  camera.target = vector3(path, prefix + "target", json["target"]);
+  if (const auto it = json.find("up"); it != json.end()) camera.up = vector3(path, prefix + "up", *it);
+  if (const auto it = json.find("projection"); it != json.end()) {
+    if (*it == "perspective") {
+      camera.projection = Projection::kPerspective;
+    } else if (*it == "orthographic") {
+      camera.projection = Projection::kOrthographic;
+    } else {
+      throw fieldError(path, prefix + "projection",
+                       "expected \"perspective\" or \"orthographic\", found " + it->dump());
+    }
+  }
+  if (const auto it = json.find("fov_deg"); it != json.end()) camera.fov_deg = number(path, prefix + "fov_deg", *it);
+  if (const auto it = json.find("ortho_height_m"); it != json.end()) {
+    camera.ortho_height_m = number(path, prefix + "ortho_height_m", *it);
+  }
+  if (const auto it = json.find("viewport"); it != json.end()) {
+    if (!it->is_array() || it->size() != 2) {
+      throw fieldError(path, prefix + "viewport", "expected [width, height] in pixels");
+    }
+    camera.viewport_width_px = pixelCount(path, prefix + "viewport[0]", (*it)[0]);
+    camera.viewport_height_px = pixelCount(path, prefix + "viewport[1]", (*it)[1]);
+  }
+  if (const auto it = json.find("near_m"); it != json.end()) camera.near_m = number(path, prefix + "near_m", *it);
+  if (const auto it = json.find("far_m"); it != json.end()) camera.far_m = number(path, prefix + "far_m", *it);
+
+  if (const auto problem = findCameraProblem(camera)) throw fieldError(path, prefix + problem->field, problem->what);
+  return camera;
+}
+
+// Every field of a camera file but format and version, in the order of docs/camera-json.md (an
+// ordered_json keeps it, for people reading the file).
+nlohmann::ordered_json cameraObject(const Camera& camera) {
+  const auto array3 = [](const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v.x(), v.y(), v.z()}); };
+  nlohmann::ordered_json json;
+  json["projection"] = camera.projection == Projection::kPerspective ? "perspective" : "orthographic";
+  json["position"] = array3(camera.position);
+  json["target"] = array3(camera.target);
+  json["up"] = array3(camera.up);
+  json["fov_deg"] = camera.fov_deg;
+  json["ortho_height_m"] = camera.ortho_height_m;
+  json["viewport"] = {camera.viewport_width_px, camera.viewport_height_px};
+  json["near_m"] = camera.near_m;
+  json["far_m"] = camera.far_m;
+  return json;
+}
+
 }  // namespace
 
 Camera readCameraJson(const std::string& path) {
@@ -91,15 +166,7 @@ Camera readCameraJson(const std::string& path) {
   if (!json.is_object()) {
     throw fileError(path, std::string("expected a JSON object (a Plumb camera file), found ") + json.type_name());
   }
-  for (const auto& [key, value] : json.items()) {
-    bool known = false;
-    for (const char* field : kKnownFields) known = known || key == field;
-    if (!known) {
-      throw fieldError(path, key,
-                       "unknown field (known: format, version, projection, position, target, up, fov_deg, "
-                       "ortho_height_m, viewport, near_m, far_m)");
-    }
-  }
+  checkKnownFields(path, json, "", true);
 
   if (const auto it = json.find("format"); it != json.end()) {
     if (!it->is_string() || it->get<std::string>() != kFormat) {
@@ -118,57 +185,18 @@ Camera readCameraJson(const std::string& path) {
                            std::to_string(kCameraJsonVersion) + "); update Plumb");
     }
   }
-
-  Camera camera;
-  for (const char* required : {"position", "target"}) {
-    if (!json.contains(required)) throw fieldError(path, required, "missing (a camera needs a position and a target)");
-  }
-  camera.position = vector3(path, "position", json["position"]);
-  camera.target = vector3(path, "target", json["target"]);
-  if (const auto it = json.find("up"); it != json.end()) camera.up = vector3(path, "up", *it);
-  if (const auto it = json.find("projection"); it != json.end()) {
-    if (*it == "perspective") {
-      camera.projection = Projection::kPerspective;
-    } else if (*it == "orthographic") {
-      camera.projection = Projection::kOrthographic;
-    } else {
-      throw fieldError(path, "projection", "expected \"perspective\" or \"orthographic\", found " + it->dump());
-    }
-  }
-  if (const auto it = json.find("fov_deg"); it != json.end()) camera.fov_deg = number(path, "fov_deg", *it);
-  if (const auto it = json.find("ortho_height_m"); it != json.end()) {
-    camera.ortho_height_m = number(path, "ortho_height_m", *it);
-  }
-  if (const auto it = json.find("viewport"); it != json.end()) {
-    if (!it->is_array() || it->size() != 2) throw fieldError(path, "viewport", "expected [width, height] in pixels");
-    camera.viewport_width_px = pixelCount(path, "viewport[0]", (*it)[0]);
-    camera.viewport_height_px = pixelCount(path, "viewport[1]", (*it)[1]);
-  }
-  if (const auto it = json.find("near_m"); it != json.end()) camera.near_m = number(path, "near_m", *it);
-  if (const auto it = json.find("far_m"); it != json.end()) camera.far_m = number(path, "far_m", *it);
-
-  if (const auto problem = findCameraProblem(camera)) throw fieldError(path, problem->field, problem->what);
-  return camera;
+  return cameraFields(path, json, "");
 }
 
 void writeCameraJson(const Camera& camera, const std::string& path) {
   if (const auto problem = findCameraProblem(camera)) {
     throw fileError(path, "not writing an invalid camera: field '" + problem->field + "': " + problem->what);
   }
-  const auto array3 = [](const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v.x(), v.y(), v.z()}); };
-  // An ordered_json keeps the fields in the order of docs/camera-json.md, for people reading it.
   nlohmann::ordered_json json;
   json["format"] = kFormat;
   json["version"] = kCameraJsonVersion;
-  json["projection"] = camera.projection == Projection::kPerspective ? "perspective" : "orthographic";
-  json["position"] = array3(camera.position);
-  json["target"] = array3(camera.target);
-  json["up"] = array3(camera.up);
-  json["fov_deg"] = camera.fov_deg;
-  json["ortho_height_m"] = camera.ortho_height_m;
-  json["viewport"] = {camera.viewport_width_px, camera.viewport_height_px};
-  json["near_m"] = camera.near_m;
-  json["far_m"] = camera.far_m;
+  const nlohmann::ordered_json fields = cameraObject(camera);
+  for (const auto& [key, value] : fields.items()) json[key] = value;
   // One field per line with compact arrays: easy to read and to edit by hand.
   std::string text = "{\n";
   for (const auto& [key, value] : json.items()) {
@@ -179,6 +207,26 @@ void writeCameraJson(const Camera& camera, const std::string& path) {
   AtomicFile file(path);
   file.write(text.data(), text.size());
   file.commit();
+}
+
+std::string cameraJsonObject(const Camera& camera) {
+  assert(!findCameraProblem(camera) && "cameraJsonObject of an invalid camera: check it with findCameraProblem");
+  return cameraObject(camera).dump();
+}
+
+Camera cameraFromJsonObject(std::string_view object_text, const std::string& path, std::string_view field) {
+  Json json;
+  try {
+    json = Json::parse(object_text);
+  } catch (const Json::exception& error) {
+    throw fieldError(path, field, std::string("not a JSON camera: ") + error.what());
+  }
+  if (!json.is_object()) {
+    throw fieldError(path, field, std::string("expected a JSON object (a camera), found ") + json.type_name());
+  }
+  const std::string prefix = std::string(field) + ".";
+  checkKnownFields(path, json, prefix, false);
+  return cameraFields(path, json, prefix);
 }
 
 }  // namespace plumb::view

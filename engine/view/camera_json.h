@@ -1,9 +1,10 @@
 #pragma once
 // Cameras as JSON files ("plumb-camera", version 1; the format is docs/camera-json.md).
 //
-// Both functions are thread-safe as long as no two calls write the same path.
+// Every function is thread-safe as long as no two calls write the same path.
 
 #include <string>
+#include <string_view>
 
 #include "engine/view/camera.h"
 
@@ -25,5 +26,17 @@ Camera readCameraJson(const std::string& path);
 // atomically through AtomicFile. Numbers are written so that readCameraJson returns them bit for
 // bit. Throws plumb::Error when the file cannot be written.
 void writeCameraJson(const Camera& camera, const std::string& path);
+
+// A camera inside another JSON file (the project file, docs/project-file.md): the text of one JSON
+// object with every field of a camera file except `format` and `version`. `camera` must be valid
+// (asserted; findCameraProblem says why not). Numbers are written so that cameraFromJsonObject
+// returns them bit for bit. Thread-safe.
+std::string cameraJsonObject(const Camera& camera);
+
+// The camera of `object_text`, the text of the JSON value at `field` (e.g. "camera") in the file
+// `path`, read with the rules of readCameraJson, except that the value must be an object and that
+// `format` and `version` are unknown fields there. Throws plumb::Error "'<path>': field
+// '<field>.<name>': <what>" (or "field '<field>'" when the value is not an object). Thread-safe.
+Camera cameraFromJsonObject(std::string_view object_text, const std::string& path, std::string_view field);
 
 }  // namespace plumb::view

@@ -17,6 +17,7 @@
 
 #include "engine/io/png_image.h"
 #include "tests/support/temp_directory.h"
+#include "tests/ui/viewer_session.h"
 
 namespace {
 
@@ -29,14 +30,8 @@ const Eigen::Vector3d kWallPoint(512003.0, 5403002.0, 251.3);
 constexpr double kMaxAngleDeg = 0.5;
 constexpr double kMaxOffsetM = 0.005;
 
-json readJson(const fs::path& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
-
-Eigen::Vector3d vector3(const json& value) {
-  return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
-}
+using plumb::test::readJson;
+using plumb::test::vector3;
 
 double differingPixels(const plumb::io::RgbaImage& a, const plumb::io::RgbaImage& b) {
   std::size_t differing = 0;
@@ -160,6 +155,33 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   EXPECT_EQ(measure.at("from_kind"), "corner");
   EXPECT_EQ(measure.at("to_kind"), "plane");
   EXPECT_NEAR(measure.at("distance_m").get<double>(), (on_wall - corner).norm(), 0.005);
+}
+
+}  // namespace
+
+namespace {
+
+// A big point file shows a preview (every k-th point) while the whole file is imported; the
+// whole cloud then takes its place, the view where the user took it, and the wait for
+// streaming waits for it.
+TEST(Viewer, ABigPointFileShowsAPreviewWhileItIsImported) {
+  const plumb::test::TempDirectory dir;
+  const std::string ply = dir.file("room.ply");
+  const std::string simulate = std::string("'") + PLUMB_BINARY +
+                               "' simulate --scene room --points 1500000 --noise-mm 2 -o '" + ply + "' >/dev/null";
+  ASSERT_EQ(std::system(simulate.c_str()), 0);
+  const json steps = json::array({{{"wait", "streaming_idle"}, {"timeout_s", 300}}, {{"screenshot", "whole.png"}}});
+  ASSERT_EQ(plumb::test::runViewerSession(dir, "'" + ply + "'", steps, 1280, 720), 0);
+  const std::string log = plumb::test::viewerLog(dir);
+  std::printf("%s", log.c_str());
+  const std::size_t preview = log.find("a preview while the whole file is imported");
+  const std::size_t whole = log.find("now the whole cloud:");
+  ASSERT_NE(preview, std::string::npos) << "no preview was shown";
+  ASSERT_NE(whole, std::string::npos) << "the whole cloud did not replace the preview";
+  EXPECT_LT(preview, whole);
+  const std::uint64_t points = std::stoull(log.substr(whole + std::string("now the whole cloud: ").size()));
+  EXPECT_GT(points, 1'400'000u) << "every point of the file, after the preview";
+  plumb::test::keepScreenshots(dir);
 }
 
 }  // namespace

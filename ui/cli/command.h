@@ -18,6 +18,7 @@ struct Command {
 
 // Each adds its subcommand to `plumb` (one file per command).
 Command addSimulateCommand(CLI::App& plumb);
+Command addExportCommand(CLI::App& plumb);
 Command addGrowCommand(CLI::App& plumb);
 Command addImportCommand(CLI::App& plumb);
 Command addInfoCommand(CLI::App& plumb);

@@ -26,6 +26,9 @@ Command addViewCommand(CLI::App& plumb) {
       "Example: plumb view site.plumb   |   plumb view --script session.json --screenshot-dir shots");
   sub->add_option("cloud", options->cloud, "An octree (plumb import) or a point file (imported in the background)")
       ->check(CLI::ExistingFile);
+  sub->add_option("--project", options->project,
+                  "The project to open and save (.plumbproj; default: <CLOUD>.plumbproj, or the demo's in the cache); "
+                  "its cloud and view are used unless CLOUD and --camera are given");
   sub->add_option("--script", options->script, "Replay a session script (docs/user-guide.md), then exit")
       ->check(CLI::ExistingFile);
   sub->add_option("--screenshot-dir", options->screenshot_dir, "Where the script's screenshots go (default .)");
@@ -44,6 +47,10 @@ Command addViewCommand(CLI::App& plumb) {
   sub->add_option("--render-scale", options->render_scale,
                   "Render the cloud at this fraction of the window's resolution (default 0.5 on the CPU, else 1)")
       ->check(CLI::Range(0.1, 1.0));
+  sub->add_option("--tp", options->plane_threshold_m,
+                  "The Grow tool's plane threshold t_p in metres, about 3 x the scanner's noise (the panel changes it)")
+      ->check(CLI::Range(0.0005, 1.0))
+      ->capture_default_str();
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   sub->add_flag("!--fixed-quality", options->adaptive_quality,
                 "Render a moving view as a still one (by default it drops resolution and points to keep 30 fps)");

@@ -2,9 +2,11 @@
 // The viewer's ECS components (engine/ecs). Plain values; each names its one writer per frame.
 //
 //   Segment, Edge, Corner, SnapCandidate   written by SceneState::applyGrow (grow results)
-//   Polygon                                written by the drawing tools (issue 7)
+//   Polygon                                written by SceneState's edits (the drawing tools' results)
+//   Corner (three selected segments)       written by SceneState::addCornerOfSelected
+//   Group, InGroup                         written by SceneState::groupSelected
 //   Selection                              written by the segment list and the tools
-//   ToolState                              written by the palette (one entity holds it)
+//   ToolState                              written by the palette and DrawingTools (one entity holds it)
 
 #include <Eigen/Core>
 #include <array>
@@ -47,6 +49,7 @@ struct Corner {
   std::array<ecs::Entity, 3> segments;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::array<double, 3> support{};  // the three lambda2, m^2
+  std::string name;                 // "Corner N" for one made of three selected segments
 };
 
 // Something the cursor can snap to, drawn as a marker (corners, edge ends).
@@ -57,17 +60,79 @@ struct SnapCandidate {
   ecs::Entity source = ecs::kNullEntity;  // the Corner or Edge entity
 };
 
-// A drawn polygon (world coordinates), on a segment's plane or free.
+// A drawn polygon (world coordinates): a simple planar ring, on a segment's plane or free. With a
+// non-zero extrusion it is a closed prism (the ring, the ring moved by it, and the sides).
 struct Polygon {
   std::vector<Eigen::Vector3d> vertices;
-  ecs::Entity plane = ecs::kNullEntity;
+  ecs::Entity plane = ecs::kNullEntity;  // the segment it was drawn on, or null
   std::string name;
+  Eigen::Vector3d extrusion = Eigen::Vector3d::Zero();
+};
+
+// A named set of items; an item's InGroup names it.
+struct Group {
+  std::string name;
+};
+struct InGroup {
+  ecs::Entity group = ecs::kNullEntity;
 };
 
 // Tag: the entity is selected.
 struct Selection {};
 
-enum class Tool : std::uint8_t { kNavigate, kGrow, kMeasure };
+enum class Tool : std::uint8_t { kNavigate, kGrow, kMeasure, kPolygon, kMove, kExtrude };
+
+// The tool's name as the palette shows it and scripts name it (lower case there).
+constexpr const char* toolName(Tool tool) {
+  switch (tool) {
+    case Tool::kNavigate:
+      return "Navigate";
+    case Tool::kGrow:
+      return "Grow";
+    case Tool::kMeasure:
+      return "Measure";
+    case Tool::kPolygon:
+      return "Polygon";
+    case Tool::kMove:
+      return "Move/Copy";
+    case Tool::kExtrude:
+      return "Extrude";
+  }
+  return "";
+}
+
+// A direction in space that moves and extrusions follow (paper section 4.2, direction finding).
+struct Direction {
+  Eigen::Vector3d vector = Eigen::Vector3d::UnitZ();  // unit
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();   // where it was found, for the arrow
+  const char* source = "";                            // "plane normal", "edge", "corner edge", "base to cursor"
+};
+
+// The drawing tools' state between clicks (ui/viewer/drawing_tools.h).
+struct DrawingState {
+  // Polygon: the vertices so far, and the segments every snapped vertex lies on (the plane
+  // the polygon will be on, when one remains).
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<ecs::Entity> common_segments;
+  bool common_known = false;  // false until a vertex snapped to a feature
+  bool rectangle = false;     // a rectangle from three points instead of a free polygon
+  // Move/Copy and Extrude: the polygon, and for Move the base point.
+  ecs::Entity polygon = ecs::kNullEntity;
+  std::optional<Eigen::Vector3d> base;
+  bool copy = false;
+  // Move/Copy: the last copy's original and offset, for "/N" (N - 1 more copies between them)
+  // and "xN" (copies on to N times the offset).
+  ecs::Entity copied_from = ecs::kNullEntity;
+  Eigen::Vector3d copied_offset = Eigen::Vector3d::Zero();
+  // Where the next click would put its point (snapped, then constrained), and the direction:
+  // the pointer's (followed while unlocked) and the locked one (held Shift).
+  std::optional<Eigen::Vector3d> preview;
+  std::optional<Eigen::Vector3d> preview_extrusion;  // Extrude: the prism the click would make
+  std::optional<Direction> direction;
+  bool direction_locked = false;
+  std::string typed;    // a distance being typed (metres), or after a copy "/N" or "xN"; Enter applies it
+  std::string message;  // what the tool says (the next step, or why a click did nothing)
+};
 
 struct ToolState {
   Tool active = Tool::kGrow;
@@ -80,6 +145,7 @@ struct ToolState {
   bool measure_done = false;
   // What the cursor snaps to now in a drawing tool (features only: a corner, an edge, a plane).
   std::optional<Snap> hover;
+  DrawingState drawing;
 };
 
 }  // namespace plumb::viewer

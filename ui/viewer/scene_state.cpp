@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "reco/edges_and_corners.h"
 #include "ui/viewer/grow_session.h"
 
 namespace plumb::viewer {
@@ -75,7 +76,8 @@ void SceneState::applyGrow(const GrowUpdate& update) {
     registry_.emplace(entity, Corner{{segment_entities[found.segments[0]], segment_entities[found.segments[1]],
                                       segment_entities[found.segments[2]]},
                                      found.position,
-                                     found.support});
+                                     found.support,
+                                     ""});
     registry_.emplace(entity, SnapCandidate{SnapCandidate::Kind::kCorner, found.position, entity});
     created.push_back(entity);
   }
@@ -93,6 +95,7 @@ std::size_t SceneState::deleteSelected() {
   if (selected.empty()) return 0;
   // A segment takes its edges and corners with it.
   std::vector<ecs::Entity> doomed = selected;
+  std::vector<ecs::Entity> doomed_memberships;
   const auto uses = [&](const auto& segments) {
     for (const ecs::Entity segment : segments) {
       if (std::find(selected.begin(), selected.end(), segment) != selected.end()) return true;
@@ -105,11 +108,185 @@ std::size_t SceneState::deleteSelected() {
   registry.view<Corner>().each([&](ecs::Entity entity, const Corner& corner) {
     if (uses(corner.segments)) doomed.push_back(entity);
   });
-  ecs::EditScope edit(history_, selected.size() == 1 ? "Delete segment" : "Delete segments");
+  // A group takes its membership records with it, not its members.
+  registry.view<InGroup>().each([&](ecs::Entity entity, const InGroup& in) {
+    if (std::find(selected.begin(), selected.end(), in.group) != selected.end() &&
+        std::find(selected.begin(), selected.end(), entity) == selected.end()) {
+      doomed_memberships.push_back(entity);
+    }
+  });
+  const auto kind = [&](ecs::Entity e) {
+    return registry.has<Segment>(e)   ? "segment"
+           : registry.has<Polygon>(e) ? "polygon"
+           : registry.has<Group>(e)   ? "group"
+                                      : "item";
+  };
+  ecs::EditScope edit(history_, selected.size() == 1 ? std::string("Delete ") + kind(selected.front())
+                                                     : "Delete " + std::to_string(selected.size()) + " items");
+  for (const ecs::Entity entity : doomed_memberships) registry.remove<InGroup>(entity);
   for (const ecs::Entity entity : doomed) {
     if (registry.alive(entity)) registry.destroy(entity);
   }
   return selected.size();
+}
+
+// --- edits ------------------------------------------------------------------------------------
+
+ecs::Entity SceneState::addPolygon(std::vector<Eigen::Vector3d> ring, ecs::Entity plane) {
+  ecs::EditScope edit(history_, "Polygon");
+  const ecs::Entity entity = registry_.create();
+  registry_.emplace(
+      entity, Polygon{std::move(ring), plane, "Polygon " + std::to_string(++polygons_named_), Eigen::Vector3d::Zero()});
+  return entity;
+}
+
+void SceneState::movePolygon(ecs::Entity polygon, const Eigen::Vector3d& offset) {
+  ecs::EditScope edit(history_, "Move polygon");
+  registry_.patch<Polygon>(polygon, [&](Polygon& p) {
+    for (Eigen::Vector3d& vertex : p.vertices) vertex += offset;
+    // Moved off its plane, a polygon is free.
+    if (const Segment* segment = registry_.tryGet<Segment>(p.plane);
+        segment && std::abs(segment->plane.normal.dot(offset)) > 1e-9) {
+      p.plane = ecs::kNullEntity;
+    }
+  });
+}
+
+ecs::Entity SceneState::copyPolygon(ecs::Entity polygon, const Eigen::Vector3d& offset) {
+  ecs::EditScope edit(history_, "Copy polygon");
+  return addCopy(polygon, offset);
+}
+
+std::vector<ecs::Entity> SceneState::copyPolygons(ecs::Entity polygon, const std::vector<Eigen::Vector3d>& offsets) {
+  ecs::EditScope edit(history_, "Copy polygon " + std::to_string(offsets.size()) + " times");
+  std::vector<ecs::Entity> copies;
+  for (const Eigen::Vector3d& offset : offsets) copies.push_back(addCopy(polygon, offset));
+  return copies;
+}
+
+// A copy of `polygon` moved by `offset`, in its group; within an open edit.
+ecs::Entity SceneState::addCopy(ecs::Entity polygon, const Eigen::Vector3d& offset) {
+  Polygon copy = registry_.get<Polygon>(polygon);
+  for (Eigen::Vector3d& vertex : copy.vertices) vertex += offset;
+  if (const Segment* segment = registry_.tryGet<Segment>(copy.plane);
+      segment && std::abs(segment->plane.normal.dot(offset)) > 1e-9) {
+    copy.plane = ecs::kNullEntity;
+  }
+  copy.name = "Polygon " + std::to_string(++polygons_named_);
+  const ecs::Entity entity = registry_.create();
+  registry_.emplace(entity, std::move(copy));
+  if (const InGroup* group = registry_.tryGet<InGroup>(polygon)) registry_.emplace(entity, *group);
+  return entity;
+}
+
+void SceneState::extrudePolygon(ecs::Entity polygon, const Eigen::Vector3d& extrusion) {
+  ecs::EditScope edit(history_, "Extrude");
+  registry_.patch<Polygon>(polygon, [&](Polygon& p) { p.extrusion = extrusion; });
+}
+
+std::variant<ecs::Entity, std::string> SceneState::addCornerOfSelected() {
+  std::vector<ecs::Entity> segments;
+  for (const ecs::Entity entity : selected()) {
+    if (registry_.has<Segment>(entity)) segments.push_back(entity);
+  }
+  if (segments.size() != 3) {
+    return "select three segments (" + std::to_string(segments.size()) + " selected)";
+  }
+  std::sort(segments.begin(), segments.end(), [](ecs::Entity a, ecs::Entity b) { return a.id() < b.id(); });
+  bool exists = false;
+  registry_.view<Corner>().each([&](ecs::Entity, const Corner& corner) {
+    std::array<ecs::Entity, 3> of = corner.segments;
+    std::sort(of.begin(), of.end(), [](ecs::Entity a, ecs::Entity b) { return a.id() < b.id(); });
+    exists = exists || (of[0] == segments[0] && of[1] == segments[1] && of[2] == segments[2]);
+  });
+  if (exists) return std::string("these three segments have their corner already");
+  const reco::Plane& a = registry_.get<Segment>(segments[0]).plane;
+  const reco::Plane& b = registry_.get<Segment>(segments[1]).plane;
+  const reco::Plane& c = registry_.get<Segment>(segments[2]).plane;
+  const std::optional<Eigen::Vector3d> position = reco::cornerOfPlanes(a, b, c);
+  if (!position) return std::string("two of the three planes are nearly parallel, or all three share a line");
+  ecs::EditScope edit(history_, "Corner");
+  const ecs::Entity entity = registry_.create();
+  registry_.emplace(entity, Corner{{segments[0], segments[1], segments[2]},
+                                   *position,
+                                   {a.lambda2, b.lambda2, c.lambda2},
+                                   "Corner " + std::to_string(++corners_named_)});
+  registry_.emplace(entity, SnapCandidate{SnapCandidate::Kind::kCorner, *position, entity});
+  return entity;
+}
+
+void SceneState::rename(ecs::Entity entity, std::string name) {
+  ecs::EditScope edit(history_, "Rename");
+  if (registry_.has<Segment>(entity)) registry_.patch<Segment>(entity, [&](Segment& s) { s.name = name; });
+  if (registry_.has<Polygon>(entity)) registry_.patch<Polygon>(entity, [&](Polygon& p) { p.name = name; });
+  if (registry_.has<Corner>(entity)) registry_.patch<Corner>(entity, [&](Corner& c) { c.name = name; });
+  if (registry_.has<Group>(entity)) registry_.patch<Group>(entity, [&](Group& g) { g.name = name; });
+}
+
+ecs::Entity SceneState::groupSelected() {
+  const std::vector<ecs::Entity> items = selected();
+  if (items.empty()) return ecs::kNullEntity;
+  ecs::EditScope edit(history_, "Group");
+  const ecs::Entity group = registry_.create();
+  registry_.emplace(group, Group{"Group " + std::to_string(++groups_named_)});
+  for (const ecs::Entity item : items) {
+    if (!registry_.has<Group>(item)) registry_.emplaceOrReplace(item, InGroup{group});
+  }
+  return group;
+}
+
+void SceneState::ungroupSelected() {
+  ecs::EditScope edit(history_, "Ungroup");
+  for (const ecs::Entity item : selected()) {
+    if (registry_.has<InGroup>(item)) registry_.remove<InGroup>(item);
+  }
+}
+
+// --- selection ---------------------------------------------------------------------------------
+
+std::vector<ecs::Entity> SceneState::selected() const {
+  std::vector<ecs::Entity> entities;
+  registry_.view<Selection>().each([&](ecs::Entity entity, const Selection&) { entities.push_back(entity); });
+  return entities;
+}
+
+void SceneState::select(ecs::Entity entity, bool extend) {
+  const bool was_selected = registry_.has<Selection>(entity);
+  if (!extend) clearSelection();
+  if (was_selected && extend) {
+    registry_.remove<Selection>(entity);
+  } else {
+    registry_.emplaceOrReplace(entity, Selection{});
+  }
+}
+
+void SceneState::clearSelection() {
+  for (const ecs::Entity entity : selected()) registry_.remove<Selection>(entity);
+}
+
+void SceneState::clear() {
+  dropLive();
+  history_.clear();
+  std::vector<ecs::Entity> items;
+  const auto collect = [&](ecs::Entity entity, const auto&) { items.push_back(entity); };
+  registry_.view<Segment>().each(collect);
+  registry_.view<Edge>().each(collect);
+  registry_.view<Corner>().each(collect);
+  registry_.view<Polygon>().each(collect);
+  registry_.view<Group>().each(collect);
+  registry_.view<SnapCandidate>().each(collect);
+  for (const ecs::Entity entity : items) {
+    if (registry_.alive(entity)) registry_.destroy(entity);
+  }
+  segments_named_ = polygons_named_ = corners_named_ = groups_named_ = 0;
+}
+
+void SceneState::setNameCounters(std::uint64_t segments, std::uint64_t polygons, std::uint64_t corners,
+                                 std::uint64_t groups) {
+  segments_named_ = segments;
+  polygons_named_ = polygons;
+  corners_named_ = corners;
+  groups_named_ = groups;
 }
 
 std::string SceneState::toJson() const {
@@ -140,8 +317,33 @@ std::string SceneState::toJson() const {
   registry_.view<Corner>().each([&](ecs::Entity entity, const Corner& corner) {
     corners.push_back({{"id", entity.id()},
                        {"segments", {corner.segments[0].id(), corner.segments[1].id(), corner.segments[2].id()}},
+                       {"name", corner.name},
                        {"position", vector3(corner.position)},
                        {"support", corner.support}});
+  });
+  const auto group_of = [&](ecs::Entity entity) -> nlohmann::json {
+    const InGroup* in = registry_.tryGet<InGroup>(entity);
+    return in ? nlohmann::json(in->group.id()) : nlohmann::json(nullptr);
+  };
+  nlohmann::json polygons = nlohmann::json::array();
+  registry_.view<Polygon>().each([&](ecs::Entity entity, const Polygon& polygon) {
+    nlohmann::json vertices = nlohmann::json::array();
+    for (const Eigen::Vector3d& vertex : polygon.vertices) vertices.push_back(vector3(vertex));
+    polygons.push_back(
+        {{"id", entity.id()},
+         {"name", polygon.name},
+         {"plane", polygon.plane == ecs::kNullEntity ? nlohmann::json(nullptr) : nlohmann::json(polygon.plane.id())},
+         {"vertices", vertices},
+         {"extrusion", vector3(polygon.extrusion)},
+         {"group", group_of(entity)}});
+  });
+  nlohmann::json groups = nlohmann::json::array();
+  registry_.view<Group>().each([&](ecs::Entity entity, const Group& group) {
+    nlohmann::json members = nlohmann::json::array();
+    registry_.view<InGroup>().each([&](ecs::Entity member, const InGroup& in) {
+      if (in.group == entity) members.push_back(member.id());
+    });
+    groups.push_back({{"id", entity.id()}, {"name", group.name}, {"members", members}});
   });
   const ToolState& tool = registry_.get<ToolState>(tool_);
   nlohmann::json measure = nullptr;
@@ -152,7 +354,13 @@ std::string SceneState::toJson() const {
                {"to_kind", snapKindName(tool.measure_to_kind)},
                {"distance_m", (tool.measure_to - tool.measure_from).norm()}};
   }
-  const nlohmann::json scene{{"segments", segments}, {"edges", edges}, {"corners", corners}, {"measure", measure}};
+  const nlohmann::json scene{{"segments", segments},
+                             {"edges", edges},
+                             {"corners", corners},
+                             {"polygons", polygons},
+                             {"groups", groups},
+                             {"measure", measure},
+                             {"undo", history_.canUndo() ? history_.undoName() : std::string_view()}};
   return scene.dump(2) + "\n";
 }
 

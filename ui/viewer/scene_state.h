@@ -1,11 +1,14 @@
 #pragma once
-// The viewer's scene: the ECS registry and its history, and the one writer of the grow results.
+// The viewer's scene: the ECS registry and its history, and the one writer of what is in it.
 // A grow's snapshots replace its live entities (Segment with growing = true, their Edges,
 // Corners and SnapCandidates) at each frame boundary, unrecorded; its final result becomes
-// entities in one undoable edit, "Grow".
+// entities in one undoable edit, "Grow". Every other change of the scene (the drawing tools'
+// polygons, a corner of three segments, renames, groups, deletions) is one undoable edit too.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "engine/ecs/history.h"
@@ -32,6 +35,43 @@ class SceneState {
   // undoable edit. Returns how many selected entities went.
   std::size_t deleteSelected();
 
+  // --- Edits, each one undoable edit named as undoName() shows it ---
+  // A polygon (a valid ring: the drawing tools check it) on `plane` (a Segment or null), named
+  // "Polygon N". "Polygon".
+  ecs::Entity addPolygon(std::vector<Eigen::Vector3d> ring, ecs::Entity plane);
+  // "Move polygon": every vertex by `offset`.
+  void movePolygon(ecs::Entity polygon, const Eigen::Vector3d& offset);
+  // "Copy polygon": a copy moved by `offset`, free of any plane unless the offset lies in it.
+  ecs::Entity copyPolygon(ecs::Entity polygon, const Eigen::Vector3d& offset);
+  // "Copy polygon N times": copies moved by each of `offsets`, in one edit (an array along a
+  // staircase). Returns them in the order of `offsets`.
+  std::vector<ecs::Entity> copyPolygons(ecs::Entity polygon, const std::vector<Eigen::Vector3d>& offsets);
+  // "Extrude": the polygon becomes a prism (a zero extrusion makes it flat again).
+  void extrudePolygon(ecs::Entity polygon, const Eigen::Vector3d& extrusion);
+  // "Corner": where the three selected segments meet, even with no points near (a scan
+  // shadow), as a Corner and its SnapCandidate; or why there is none (not three segments
+  // selected, two of them near parallel, one corner of them exists already).
+  std::variant<ecs::Entity, std::string> addCornerOfSelected();
+  // "Rename": a Segment's, Polygon's or Group's name.
+  void rename(ecs::Entity entity, std::string name);
+  // "Group": a new Group, "Group N", holding the selected items (leaving any group they were in).
+  // Null when nothing is selected.
+  ecs::Entity groupSelected();
+  // "Ungroup": the selected items leave their groups.
+  void ungroupSelected();
+
+  // --- Selection (not recorded: it is not part of the document) ---
+  std::vector<ecs::Entity> selected() const;
+  // Selects `entity` alone, or adds it to (or, when selected, takes it out of) the selection.
+  void select(ecs::Entity entity, bool extend);
+  void clearSelection();
+
+  // Forgets every item and the history (a project is opened).
+  void clear();
+  // Continues the "Segment N", "Polygon N", "Corner N", "Group N" numbering after these counts
+  // (a project's items).
+  void setNameCounters(std::uint64_t segments, std::uint64_t polygons, std::uint64_t corners, std::uint64_t groups);
+
   ecs::Registry& registry() { return registry_; }
   const ecs::Registry& registry() const { return registry_; }
   ecs::History& history() { return history_; }
@@ -43,6 +83,7 @@ class SceneState {
 
  private:
   void destroyAll(std::vector<ecs::Entity>& entities);
+  ecs::Entity addCopy(ecs::Entity polygon, const Eigen::Vector3d& offset);
 
   ecs::Registry registry_;
   ecs::History history_;
@@ -50,6 +91,9 @@ class SceneState {
   std::uint64_t live_grow_ = 0;       // the grow the live entities belong to (0: none)
   std::vector<ecs::Entity> live_;     // its segments, edges, corners, snap candidates
   std::uint64_t segments_named_ = 0;  // for "Segment N" names
+  std::uint64_t polygons_named_ = 0;  // "Polygon N"
+  std::uint64_t corners_named_ = 0;   // "Corner N"
+  std::uint64_t groups_named_ = 0;    // "Group N"
 };
 
 }  // namespace plumb::viewer

@@ -3,6 +3,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
+#include <array>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -22,11 +24,20 @@ int keyCode(const std::string& name) {
     const int n = std::atoi(name.c_str() + 1);
     if (n >= 1 && n <= 12) return GLFW_KEY_F1 + n - 1;
   }
-  static const std::map<std::string, int> kNamed{
-      {"ESCAPE", GLFW_KEY_ESCAPE}, {"SPACE", GLFW_KEY_SPACE},   {"TAB", GLFW_KEY_TAB},
-      {"ENTER", GLFW_KEY_ENTER},   {"DELETE", GLFW_KEY_DELETE}, {"BACKSPACE", GLFW_KEY_BACKSPACE},
-      {"PERIOD", GLFW_KEY_PERIOD}, {"LEFT", GLFW_KEY_LEFT},     {"RIGHT", GLFW_KEY_RIGHT},
-      {"UP", GLFW_KEY_UP},         {"DOWN", GLFW_KEY_DOWN},     {"LEFT_SHIFT", GLFW_KEY_LEFT_SHIFT}};
+  static const std::map<std::string, int> kNamed{{"ESCAPE", GLFW_KEY_ESCAPE},
+                                                 {"SPACE", GLFW_KEY_SPACE},
+                                                 {"TAB", GLFW_KEY_TAB},
+                                                 {"ENTER", GLFW_KEY_ENTER},
+                                                 {"DELETE", GLFW_KEY_DELETE},
+                                                 {"BACKSPACE", GLFW_KEY_BACKSPACE},
+                                                 {"PERIOD", GLFW_KEY_PERIOD},
+                                                 {"LEFT", GLFW_KEY_LEFT},
+                                                 {"RIGHT", GLFW_KEY_RIGHT},
+                                                 {"UP", GLFW_KEY_UP},
+                                                 {"DOWN", GLFW_KEY_DOWN},
+                                                 {"LEFT_SHIFT", GLFW_KEY_LEFT_SHIFT},
+                                                 {"LEFT_CONTROL", GLFW_KEY_LEFT_CONTROL},
+                                                 {"MINUS", GLFW_KEY_MINUS}};
   const auto it = kNamed.find(name);
   return it == kNamed.end() ? -1 : it->second;
 }
@@ -49,6 +60,16 @@ class StepParser {
       fail(std::string("'") + field + "' is outside any window");
     }
     return {x, y};
+  }
+
+  Eigen::Vector3d worldPoint(const json& value, const char* field) const {
+    if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
+        !value[2].is_number()) {
+      fail(std::string("'") + field + "' must be [X, Y, Z] in world coordinates");
+    }
+    const Eigen::Vector3d point(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+    if (!point.allFinite()) fail(std::string("'") + field + "' must be finite");
+    return point;
   }
 
   int button() const {
@@ -93,14 +114,20 @@ class StepParser {
                     {buttonEvent(x, y, b, true), buttonEvent(x, y, b, false)},
                     {buttonEvent(x, y, b, true), buttonEvent(x, y, b, false)}};
     } else if (step_.contains("click_world")) {
-      const json& value = step_.at("click_world");
-      if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
-          !value[2].is_number()) {
-        fail("'click_world' must be [X, Y, Z] in world coordinates");
-      }
       out.kind = ScriptStep::Kind::kClickWorld;
-      out.world = {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
-      if (!out.world.allFinite()) fail("'click_world' must be finite");
+      out.world = worldPoint(step_.at("click_world"), "click_world");
+    } else if (step_.contains("move_world")) {
+      out.kind = ScriptStep::Kind::kMoveWorld;
+      out.world = worldPoint(step_.at("move_world"), "move_world");
+    } else if (step_.contains("look")) {
+      const json& value = step_.at("look");
+      if (!value.is_object() || !value.contains("position") || !value.contains("target")) {
+        fail("'look' must be {\"position\": [X, Y, Z], \"target\": [X, Y, Z]}");
+      }
+      out.kind = ScriptStep::Kind::kLook;
+      out.world = worldPoint(value.at("position"), "look.position");
+      out.target = worldPoint(value.at("target"), "look.target");
+      if ((out.world - out.target).norm() < 1e-6) fail("'look' needs a target away from the position");
     } else if (step_.contains("drag")) {
       const json& value = step_.at("drag");
       if (!value.is_array() || value.size() != 4) fail("'drag' must be [x0, y0, x1, y1]");
@@ -135,18 +162,41 @@ class StepParser {
       out.frames.push_back({InputEvent{.kind = Kind::kKey, .key = code, .pressed = true}});
       for (std::size_t i = 0; i < hold; ++i) out.frames.push_back({});
       out.frames.push_back({InputEvent{.kind = Kind::kKey, .key = code, .pressed = false}});
+    } else if (step_.contains("key_down") || step_.contains("key_up")) {
+      // A key held across steps (Shift to lock a direction, Control to extend the selection).
+      const bool down = step_.contains("key_down");
+      const json& value = step_.at(down ? "key_down" : "key_up");
+      const int code = value.is_string() ? keyCode(value.get<std::string>()) : -1;
+      if (code < 0) fail("unknown key in '" + std::string(down ? "key_down" : "key_up") + "'");
+      out.frames.push_back({InputEvent{.kind = Kind::kKey, .key = code, .pressed = down}});
+    } else if (step_.contains("type")) {
+      // Text as typed: each character a key press, its character and a release, one frame each.
+      const json& value = step_.at("type");
+      if (!value.is_string()) fail("'type' must be a string such as \"1.25\"");
+      for (const char c : value.get<std::string>()) {
+        if (static_cast<unsigned char>(c) >= 128 || c < 32) fail("'type' takes printable ASCII only");
+        const int code = c == '.'   ? GLFW_KEY_PERIOD
+                         : c == '-' ? GLFW_KEY_MINUS
+                         : c == '/' ? GLFW_KEY_SLASH
+                                    : keyCode(std::string(1, c));
+        std::vector<InputEvent> frame;
+        if (code >= 0) frame.push_back(InputEvent{.kind = Kind::kKey, .key = code, .pressed = true});
+        frame.push_back(InputEvent{.kind = Kind::kCharacter, .codepoint = static_cast<std::uint32_t>(c)});
+        if (code >= 0) frame.push_back(InputEvent{.kind = Kind::kKey, .key = code, .pressed = false});
+        out.frames.push_back(std::move(frame));
+      }
     } else if (step_.contains("tool")) {
       const std::string name = step_.at("tool").is_string() ? step_.at("tool").get<std::string>() : "";
       out.kind = ScriptStep::Kind::kTool;
-      if (name == "navigate") {
-        out.tool = Tool::kNavigate;
-      } else if (name == "grow") {
-        out.tool = Tool::kGrow;
-      } else if (name == "measure") {
-        out.tool = Tool::kMeasure;
-      } else {
-        fail("unknown tool '" + name + "' (navigate, grow or measure)");
-      }
+      static constexpr std::array<std::pair<const char*, Tool>, 6> kTools{{{"navigate", Tool::kNavigate},
+                                                                           {"grow", Tool::kGrow},
+                                                                           {"measure", Tool::kMeasure},
+                                                                           {"polygon", Tool::kPolygon},
+                                                                           {"move", Tool::kMove},
+                                                                           {"extrude", Tool::kExtrude}}};
+      const auto it = std::find_if(kTools.begin(), kTools.end(), [&](const auto& t) { return name == t.first; });
+      if (it == kTools.end()) fail("unknown tool '" + name + "' (navigate, grow, measure, polygon, move or extrude)");
+      out.tool = it->second;
     } else if (step_.contains("wait")) {
       const std::string what = step_.at("wait").is_string() ? step_.at("wait").get<std::string>() : "";
       out.timeout_s = number("timeout_s", 60, 0.001, 3600);
@@ -237,6 +287,14 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
         return frame;
       case ScriptStep::Kind::kClickWorld:
         frame.click_world = step.world;
+        done();
+        return frame;
+      case ScriptStep::Kind::kMoveWorld:
+        frame.move_world = step.world;
+        done();
+        return frame;
+      case ScriptStep::Kind::kLook:
+        frame.look = std::pair{step.world, step.target};
         done();
         return frame;
       case ScriptStep::Kind::kTool:

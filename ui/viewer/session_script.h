@@ -7,11 +7,16 @@
 //   {"click": [x, y], "button": "left"}    press and release (button: left, right, middle)
 //   {"double_click": [x, y]}
 //   {"click_world": [X, Y, Z]}             a left click where a world point appears now
+//   {"move_world": [X, Y, Z]}              the mouse to where a world point appears now
+//   {"look": {"position": [X, Y, Z], "target": [X, Y, Z]}}   the camera (the viewport stays)
 //   {"drag": [x0, y0, x1, y1], "button": "left", "steps": 10}
 //   {"wheel": 1.0, "at": [x, y]}           positive zooms in
 //   {"key": "F", "hold_frames": 0}         a key press and release (GLFW key names: A-Z, 0-9,
 //                                          ESCAPE, SPACE, TAB, ENTER, DELETE, F1-F12, ...)
-//   {"tool": "grow"}                       choose a tool (navigate, grow, measure)
+//   {"key_down": "LEFT_SHIFT"} | {"key_up": "LEFT_SHIFT"}   a key held across steps
+//   {"type": "1.25"}                       text, a key and its character per frame
+//   {"tool": "grow"}                       choose a tool (navigate, grow, measure, polygon, move,
+//                                          extrude)
 //   {"wait": "frames", "count": N} | {"wait": "ms", "ms": N} | {"wait": "grower_idle"} |
 //   {"wait": "streaming_idle"}             the last two time out after "timeout_s" (default 60)
 //   {"screenshot": "name.png"}             into --screenshot-dir
@@ -36,6 +41,8 @@ struct ScriptStep {
   enum class Kind : std::uint8_t {
     kEvents,      // `frames`: the events of each frame in turn
     kClickWorld,  // `world`
+    kMoveWorld,   // `world`
+    kLook,        // `world` (the eye), `target`
     kTool,        // `tool`
     kWaitFrames,  // `count`
     kWaitMs,      // `ms`
@@ -47,6 +54,7 @@ struct ScriptStep {
   Kind kind = Kind::kEvents;
   std::vector<std::vector<InputEvent>> frames{};
   Eigen::Vector3d world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
   Tool tool = Tool::kGrow;
   std::uint64_t count = 0;
   double ms = 0.0;
@@ -65,9 +73,11 @@ struct ScriptFrame {
   std::optional<Tool> tool;
   std::optional<std::string> screenshot;  // file name
   std::optional<std::pair<int, int>> resize;
-  std::optional<Eigen::Vector3d> click_world;  // the viewer turns it into a click at its pixel
-  bool finished = false;                       // every step is done
-  std::optional<std::string> failure;          // a wait timed out: the session fails
+  std::optional<Eigen::Vector3d> click_world;                       // the viewer turns it into a click at its pixel
+  std::optional<Eigen::Vector3d> move_world;                        // ... a mouse move to its pixel
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> look;  // eye and target
+  bool finished = false;                                            // every step is done
+  std::optional<std::string> failure;                               // a wait timed out: the session fails
 };
 
 class ScriptPlayer {

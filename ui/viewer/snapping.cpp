@@ -52,6 +52,8 @@ const char* snapKindName(Snap::Kind kind) {
   switch (kind) {
     case Snap::Kind::kCorner:
       return "corner";
+    case Snap::Kind::kVertex:
+      return "vertex";
     case Snap::Kind::kEdge:
       return "edge";
     case Snap::Kind::kPlane:
@@ -66,14 +68,22 @@ std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera
                                const PointPicker& pick_point, const SnapOptions& options) {
   const Eigen::Vector2d cursor(x_px, y_px);
 
-  // 1. Corners: the nearest on screen within the radius.
+  // 1. Corners and polygon vertices (a prism's top ones too): the nearest on screen within the radius.
   std::optional<Snap> best;
-  registry.view<Corner>().each([&](ecs::Entity entity, const Corner& corner) {
-    const std::optional<Eigen::Vector2d> pixel = view::pixelOf(camera, corner.position);
+  const auto consider = [&](Snap::Kind kind, const Eigen::Vector3d& position, ecs::Entity entity) {
+    const std::optional<Eigen::Vector2d> pixel = view::pixelOf(camera, position);
     if (!pixel) return;
     const double distance = (*pixel - cursor).norm();
     if (distance <= options.radius_px && (!best || distance < best->distance_px)) {
-      best = Snap{Snap::Kind::kCorner, corner.position, entity, distance};
+      best = Snap{kind, position, entity, distance};
+    }
+  };
+  registry.view<Corner>().each(
+      [&](ecs::Entity entity, const Corner& corner) { consider(Snap::Kind::kCorner, corner.position, entity); });
+  registry.view<Polygon>().each([&](ecs::Entity entity, const Polygon& polygon) {
+    for (const Eigen::Vector3d& vertex : polygon.vertices) {
+      consider(Snap::Kind::kVertex, vertex, entity);
+      if (!polygon.extrusion.isZero(0.0)) consider(Snap::Kind::kVertex, vertex + polygon.extrusion, entity);
     }
   });
   if (best) return best;

@@ -1,7 +1,8 @@
 #pragma once
 // Cursor snapping (paper section 4.2): what the pointer means in a drawing tool. In priority
-// order, within a pixel radius: a corner, a point on an edge within its support range, a point
-// on a segment's plane inside its outline, a point of the cloud. Corners and edges come from the
+// order, within a pixel radius: a corner or a drawn polygon's vertex (the nearer), a point on an
+// edge within its support range, a point on a segment's plane inside its outline, a point of
+// the cloud. Corners and edges come from the
 // planes, not from the points, so a corner in a scan shadow is still a corner.
 
 #include <Eigen/Core>
@@ -18,10 +19,10 @@ class Registry;
 namespace plumb::viewer {
 
 struct Snap {
-  enum class Kind { kCorner, kEdge, kPlane, kPoint };
+  enum class Kind { kCorner, kVertex, kEdge, kPlane, kPoint };
   Kind kind = Kind::kPoint;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world coordinates
-  ecs::Entity source = ecs::kNullEntity;               // the Corner, Edge or Segment entity; null for a point
+  ecs::Entity source = ecs::kNullEntity;               // the Corner, Polygon, Edge or Segment; null for a point
   double distance_px = 0.0;                            // from the cursor to where the snap appears
 };
 
@@ -35,7 +36,7 @@ struct SnapOptions {
 using PointPicker = std::function<std::optional<Eigen::Vector3d>(double x_px, double y_px)>;
 
 // What the cursor at (x, y) (pixels of `camera`'s viewport) snaps to in `registry` (Corner,
-// Edge and Segment components); `pick_point` is asked only when no feature is near. Nothing
+// Polygon, Edge and Segment components); `pick_point` is asked only when no feature is near. Nothing
 // when nothing is there.
 std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera& camera, double x_px, double y_px,
                                const PointPicker& pick_point, const SnapOptions& options = {});

@@ -9,22 +9,30 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "cad/export.h"
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
 #include "engine/io/png_image.h"
+#include "engine/io/sampled_reader.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/lod/octree_builder.h"
 #include "engine/view/camera_controls.h"
 #include "ui/viewer/demo_scan.h"
+#include "ui/viewer/project_bridge.h"
 #include "ui/viewer/snapping.h"
 #include "ui/viewer/view_at_click.h"
 
 namespace plumb::viewer {
 namespace {
 
+bool isDrawingTool(Tool tool) {
+  return tool == Tool::kPolygon || tool == Tool::kMove || tool == Tool::kExtrude;
+}
+
 constexpr std::size_t kNodeCacheBytes = std::size_t{1} << 30;
-constexpr double kMovingFrameMs = 1000.0 / 30.0;  // what a moving view aims for
+constexpr std::uint64_t kPreviewPoints = 500'000;  // an import's preview holds about this many
+constexpr double kMovingFrameMs = 1000.0 / 30.0;   // what a moving view aims for
 
 gpu::DeviceChoice deviceChoice(const ViewerOptions& options, VkSurfaceKHR surface) {
   gpu::DeviceChoice choice =
@@ -48,6 +56,7 @@ LoadedCloud::~LoadedCloud() {
 
 Viewer::Viewer(const ViewerOptions& options)
     : options_(options),
+      project_(ProjectSession::open(options.project, options.cloud)),
       instance_(gpu::instanceOptionsFromEnvironment(), windows_.requiredInstanceExtensions()),
       window_(windows_, options.width, options.height, "Plumb"),
       surface_(window_.createSurface(instance_.handle())),
@@ -66,8 +75,10 @@ Viewer::Viewer(const ViewerOptions& options)
   moving_scale_ = render_scale_;
   adaptive_quality_ = options.adaptive_quality;
   settings_.selection.point_budget = options.budget_points > 0 ? options.budget_points : (cpu ? 1'000'000 : 5'000'000);
+  grow_panel_.plane_threshold_m = static_cast<float>(options.plane_threshold_m);
   jobs_.setWakeUp([] { Window::wakeUp(); });
   if (!options.script.empty()) script_.emplace(readSessionScript(options.script));
+  openProject();
   startLoading();
 }
 
@@ -75,13 +86,84 @@ Viewer::~Viewer() {
   if (cloud_ && cloud_->grow) cloud_->grow->cancel();
   jobs_.waitIdle();  // an import or a grow still running finishes (or sees its cancellation) first
   // An import that finished after the window closed: its octree was never opened.
-  const bool opened = cloud_ && !cloud_->temporary.empty();
+  const bool opened = cloud_ && cloud_->temporary == load_progress_->temporary;
   if (!opened && !load_progress_->temporary.empty()) {
     std::error_code ignored;
     std::filesystem::remove(load_progress_->temporary, ignored);
   }
   cloud_.reset();
   vkDeviceWaitIdle(device_.handle());
+}
+
+// --- the project --------------------------------------------------------------------------------
+
+// The project's items into the scene; its cloud and first view unless the command line gave them.
+void Viewer::openProject() {
+  std::optional<cad::Project> project = project_.takeOpened();
+  if (!project) {
+    project_.markSaved(documentVersion(scene_.registry()));
+    return;
+  }
+  if (options_.cloud.empty() && !project->cloud_path.empty()) {
+    const std::filesystem::path cloud = project->cloud_path;
+    options_.cloud =
+        cloud.is_absolute() ? cloud.string() : (std::filesystem::path(project_.path()).parent_path() / cloud).string();
+  }
+  if (!options_.camera && project->camera) options_.camera = project->camera;
+  loadProject(*project, scene_);
+  // Recovered work is not in the project file yet.
+  project_.markSaved(project_.recovered() ? ~std::uint64_t{0} : documentVersion(scene_.registry()));
+  project_message_ =
+      project_.recovered() ? "recovered unsaved work from " + project_.autosavePath() : "opened " + project_.path();
+  std::printf("plumb view: %s\n", project_message_.c_str());
+}
+
+cad::Project Viewer::currentProject() const {
+  const std::string cloud = options_.cloud.empty() ? "" : std::filesystem::absolute(options_.cloud).string();
+  std::optional<view::Camera> camera;
+  if (cloud_) camera = cloud_->navigator->camera();
+  return projectOf(scene_.registry(), cloud, camera);
+}
+
+void Viewer::saveProject() {
+  try {
+    project_.save(currentProject(), documentVersion(scene_.registry()));
+    project_message_ = "saved " + project_.path();
+  } catch (const std::exception& error) {
+    project_message_ = error.what();
+  }
+  std::printf("plumb view: %s\n", project_message_.c_str());
+}
+
+// Unsaved changes go to the autosave every ProjectSession::kAutosaveInterval, and when the
+// viewer closes (`now`).
+void Viewer::autosaveProject(bool now) {
+  const std::uint64_t version = documentVersion(scene_.registry());
+  const Clock::time_point time = Clock::now();
+  if (!(now ? project_.unsaved(version) : project_.autosaveDue(version, time))) return;
+  try {
+    project_.autosave(currentProject(), version, time);
+    if (now) std::printf("plumb view: unsaved changes kept in %s\n", project_.autosavePath().c_str());
+  } catch (const std::exception& error) {
+    project_message_ = std::string("autosave failed: ") + error.what();
+    std::fprintf(stderr, "plumb view: %s\n", project_message_.c_str());
+  }
+}
+
+// glTF, OBJ, DXF and CSV beside the project: "<project without .plumbproj>.glb", ...
+void Viewer::exportProject() {
+  std::filesystem::path stem = project_.path();
+  if (stem.extension() == ".plumbproj") stem.replace_extension();
+  try {
+    const std::vector<std::string> written = cad::exportAll(currentProject(), {.gltf = stem.string() + ".glb",
+                                                                               .obj = stem.string() + ".obj",
+                                                                               .dxf = stem.string() + ".dxf",
+                                                                               .csv = stem.string() + ".csv"});
+    project_message_ = "exported " + std::to_string(written.size()) + " files to " + stem.string() + ".*";
+  } catch (const std::exception& error) {
+    project_message_ = error.what();
+  }
+  std::printf("plumb view: %s\n", project_message_.c_str());
 }
 
 // --- loading -----------------------------------------------------------------------------------
@@ -98,6 +180,7 @@ void Viewer::startLoading() {
   // window shows the progress.
   if (!cloud.empty() && lod::Octree::looksLikeOctree(cloud)) {
     openCloud(lod::Octree::open(cloud), "", options_.camera);
+    progress->finished = true;
     return;
   }
   jobs_.submit(jobs::Priority::background, "load cloud", [this, progress, report, cloud](const jobs::CancelToken&) {
@@ -109,25 +192,49 @@ void Viewer::startLoading() {
         path = demo.octree.string();
         if (!home) home = demo.home;
       } else {
-        temporary =
-            (std::filesystem::temp_directory_path() / ("plumb-view-" + std::to_string(::getpid()) + ".plumb")).string();
-        {
-          const std::scoped_lock lock(progress->mutex);
-          progress->temporary = temporary;
-        }
-        lod::BuildOptions build;
-        build.sources = lod::fileSources({cloud});
-        build.output = temporary;
-        build.progress = [&](std::string_view phase, std::uint64_t done, std::uint64_t total) {
-          report(
-              std::string("importing ") + std::filesystem::path(cloud).filename().string() + ": " + std::string(phase),
-              total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0.0);
+        const std::string name = std::filesystem::path(cloud).filename().string();
+        const auto build = [&](const std::string& output, std::uint64_t stride, const std::string& what) {
+          {
+            const std::scoped_lock lock(progress->mutex);
+            progress->temporary = output;
+          }
+          lod::BuildOptions options;
+          options.sources = lod::fileSources({cloud});
+          if (stride > 1) {
+            for (lod::BuildSource& source : options.sources) {
+              source.open = [open = source.open, stride] {
+                return std::make_unique<io::SampledReader>(open(), stride);
+              };
+            }
+          }
+          options.output = output;
+          options.progress = [&](std::string_view phase, std::uint64_t done, std::uint64_t total) {
+            report(what + name + ": " + std::string(phase),
+                   total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0.0);
+          };
+          lod::buildOctree(options);
         };
-        lod::buildOctree(build);
+        const std::string stem =
+            (std::filesystem::temp_directory_path() / ("plumb-view-" + std::to_string(::getpid()))).string();
+        // A big file shows a preview first, every k-th point, while the whole file is imported:
+        // the view can be moved and grown on meanwhile, and the whole cloud takes its place.
+        const std::uint64_t declared = io::openPointCloud(cloud)->info().declared_points.value_or(0);
+        if (declared > 2 * kPreviewPoints) {
+          const std::string preview = stem + "-preview.plumb";
+          build(preview, declared / kPreviewPoints, "preview of ");
+          std::shared_ptr<const lod::Octree> octree = lod::Octree::open(preview);
+          jobs_.post([this, octree, preview, home] { openCloud(octree, preview, home, true); });
+        }
+        temporary = stem + ".plumb";
+        build(temporary, 1, "importing ");
         path = temporary;
       }
       std::shared_ptr<const lod::Octree> octree = lod::Octree::open(path);
-      jobs_.post([this, octree, temporary, home] { openCloud(octree, temporary, home); });
+      jobs_.post([this, octree, temporary, home, progress] {
+        openCloud(octree, temporary, home);
+        const std::scoped_lock lock(progress->mutex);
+        progress->finished = true;
+      });
     } catch (const std::exception& error) {
       const std::scoped_lock lock(progress->mutex);
       progress->error = error.what();
@@ -136,7 +243,16 @@ void Viewer::startLoading() {
 }
 
 void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string temporary,
-                       std::optional<view::Camera> home) {
+                       std::optional<view::Camera> home, bool preview) {
+  // The whole cloud after its preview: the view stays where the user took it; a grow on the
+  // preview stops (its finished segments stay: they are planes of the same surfaces).
+  std::optional<view::Camera> current;
+  if (cloud_) {
+    current = cloud_->navigator->camera();
+    cloud_->grow->cancel();
+    scene_.dropLive();
+    cloud_.reset();
+  }
   auto cloud = std::make_unique<LoadedCloud>();
   cloud->octree = std::move(octree);
   cloud->temporary = std::move(temporary);
@@ -159,6 +275,7 @@ void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string te
       std::make_unique<Navigator>(Eigen::Vector3d(bounds.min[0], bounds.min[1], bounds.min[2]),
                                   Eigen::Vector3d(bounds.max[0], bounds.max[1], bounds.max[2]), width, height);
   if (home) cloud->navigator->setHome(*home);
+  if (current) cloud->navigator->setCamera(*current);
   cloud->grow = std::make_unique<GrowSession>(jobs_, *cloud->cache, [this](const GrowUpdate& update) {
     scene_.applyGrow(update);
     grow_panel_.last_update = update;
@@ -167,6 +284,9 @@ void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string te
     imgui_.record(commands, image);
     if (pending_screenshot_) screenshots_.record(commands, image);
   });
+  std::printf("plumb view: %s %llu points%s\n", current ? "now the whole cloud:" : "opened",
+              static_cast<unsigned long long>(cloud->octree->header().point_count),
+              preview ? ", a preview while the whole file is imported" : "");
   cloud_ = std::move(cloud);
   window_.setTitle("Plumb - " + (options_.cloud.empty() ? std::string("demo office scan") : options_.cloud));
 }
@@ -201,27 +321,40 @@ int Viewer::run() {
       events.insert(events.end(), frame.events.begin(), frame.events.end());
       if (frame.tool) setTool(*frame.tool);
       if (frame.resize) window_.resize(frame.resize->first, frame.resize->second);
-      if (frame.click_world && cloud_) {
-        const std::optional<Eigen::Vector2d> pixel = view::pixelOf(cloud_->navigator->camera(), *frame.click_world);
+      if (frame.look && cloud_) {
+        view::Camera camera = cloud_->navigator->camera();
+        camera.position = frame.look->first;
+        camera.target = frame.look->second;
+        cloud_->navigator->setCamera(camera);
+      }
+      const std::array<std::pair<std::optional<Eigen::Vector3d>, bool>, 2> world_steps{
+          {{frame.click_world, true}, {frame.move_world, false}}};
+      for (const auto& [world, press] : world_steps) {
+        if (!world || !cloud_) continue;
+        const std::optional<Eigen::Vector2d> pixel = view::pixelOf(cloud_->navigator->camera(), *world);
         if (!pixel) {
-          std::fprintf(stderr, "plumb view: %s: click_world: the point is behind the camera\n",
+          std::fprintf(stderr, "plumb view: %s: the world point of a step is behind the camera\n",
                        options_.script.c_str());
           exit_status_ = 1;
+          quit_ = true;
           break;
         }
         const double x = pixel->x() / renderScale(), y = pixel->y() / renderScale();
         events.push_back({.kind = InputEvent::Kind::kMouseMove, .x = x, .y = y});
-        events.push_back({.kind = InputEvent::Kind::kMouseButton,
-                          .x = x,
-                          .y = y,
-                          .button = GLFW_MOUSE_BUTTON_LEFT,
-                          .pressed = true});
-        events.push_back({.kind = InputEvent::Kind::kMouseButton,
-                          .x = x,
-                          .y = y,
-                          .button = GLFW_MOUSE_BUTTON_LEFT,
-                          .pressed = false});
+        if (press) {
+          events.push_back({.kind = InputEvent::Kind::kMouseButton,
+                            .x = x,
+                            .y = y,
+                            .button = GLFW_MOUSE_BUTTON_LEFT,
+                            .pressed = true});
+          events.push_back({.kind = InputEvent::Kind::kMouseButton,
+                            .x = x,
+                            .y = y,
+                            .button = GLFW_MOUSE_BUTTON_LEFT,
+                            .pressed = false});
+        }
       }
+      if (quit_) break;
       screenshot = frame.screenshot;
     }
 
@@ -233,6 +366,7 @@ int Viewer::run() {
       handleEvents(events);  // a close while minimised
       continue;
     }
+    autosaveProject(false);
     imgui_.beginFrame(size.width, size.height, frame_ms_ * 1e-3);
     handleEvents(events);
     updateHover();
@@ -240,6 +374,7 @@ int Viewer::run() {
     imgui_.endFrame();
     render(screenshot.has_value(), screenshot.value_or(""));
   }
+  autosaveProject(true);
   if (!options_.dump_scene.empty()) {
     AtomicFile file(options_.dump_scene);
     const std::string json = scene_.toJson();
@@ -281,8 +416,11 @@ double Viewer::renderScale() const {
   return static_cast<double>(cloud_->navigator->camera().viewport_width_px) / size.width;
 }
 
+// Every node the view wants is drawn, of the whole cloud (not of an import's preview).
 bool Viewer::streamingIdle() const {
-  return cloud_ && last_stats_.frame > 0 && last_stats_.complete();
+  if (!cloud_ || last_stats_.frame == 0 || !last_stats_.complete()) return false;
+  const std::scoped_lock lock(load_progress_->mutex);
+  return load_progress_->finished;
 }
 
 void Viewer::handleEvents(const std::vector<InputEvent>& events) {
@@ -306,19 +444,89 @@ void Viewer::handleEvents(const std::vector<InputEvent>& events) {
   }
 }
 
+// Keys of the drawing tools: Shift locks the direction; while a tool has begun, digits, '.',
+// '-', Backspace and Enter type a distance (and are not view presets). True when taken.
+bool Viewer::drawingKey(const InputEvent& event) {
+  if (event.kind == InputEvent::Kind::kKey && (event.key == GLFW_KEY_LEFT_SHIFT || event.key == GLFW_KEY_RIGHT_SHIFT)) {
+    drawing_.lockDirection(event.pressed);
+    return false;  // the navigator's fast flight sees Shift too
+  }
+  const DrawingState& d = scene_.tool().drawing;
+  const bool begun = !d.vertices.empty() || d.base || d.polygon != ecs::kNullEntity;
+  if (!isDrawingTool(scene_.tool().active) || !begun || !cloud_) return false;
+  if (event.kind == InputEvent::Kind::kCharacter) {
+    if (event.codepoint < 128) drawing_.type(static_cast<char>(event.codepoint));
+    return true;
+  }
+  if (event.kind != InputEvent::Kind::kKey) return false;
+  const bool typing = (event.key >= GLFW_KEY_0 && event.key <= GLFW_KEY_9) || event.key == GLFW_KEY_PERIOD ||
+                      event.key == GLFW_KEY_MINUS || (event.key >= GLFW_KEY_KP_0 && event.key <= GLFW_KEY_KP_9) ||
+                      event.key == GLFW_KEY_KP_DECIMAL || event.key == GLFW_KEY_KP_SUBTRACT ||
+                      event.key == GLFW_KEY_SLASH || event.key == GLFW_KEY_KP_DIVIDE || event.key == GLFW_KEY_X ||
+                      event.key == GLFW_KEY_KP_MULTIPLY;
+  if (typing) return true;  // the character event that follows carries it
+  if (!event.pressed) return false;
+  if (event.key == GLFW_KEY_BACKSPACE) {
+    drawing_.backspace();
+    return true;
+  }
+  if (event.key == GLFW_KEY_ENTER || event.key == GLFW_KEY_KP_ENTER) {
+    drawing_.enter(pointerAt(hovered_px_.x(), hovered_px_.y(), false), cloud_->navigator->camera());
+    return true;
+  }
+  return false;
+}
+
 void Viewer::handleViewEvent(const InputEvent& event) {
+  if (event.kind == InputEvent::Kind::kKey &&
+      (event.key == GLFW_KEY_LEFT_CONTROL || event.key == GLFW_KEY_RIGHT_CONTROL)) {
+    control_held_ = event.pressed;
+  }
+  if (drawingKey(event)) return;
   if (event.kind == InputEvent::Kind::kKey && event.pressed) {
-    const bool control = (event.mods & GLFW_MOD_CONTROL) != 0;
+    const bool control = (event.mods & GLFW_MOD_CONTROL) != 0 || control_held_;
     if (control && event.key == GLFW_KEY_Z) return undo();
     if (control && event.key == GLFW_KEY_Y) return redo();
+    if (control && event.key == GLFW_KEY_S) return saveProject();
+    if (control && event.key == GLFW_KEY_G) {
+      scene_.groupSelected();
+      return;
+    }
     if (event.key == GLFW_KEY_DELETE) return deleteSelected();
     if (event.key == GLFW_KEY_ESCAPE) {
       if (cloud_ && cloud_->grow) cloud_->grow->cancel();
+      drawing_.escape();
       return;
     }
-    if (!control && event.key == GLFW_KEY_N) return setTool(Tool::kNavigate);
-    if (!control && event.key == GLFW_KEY_G) return setTool(Tool::kGrow);
-    if (!control && event.key == GLFW_KEY_M) return setTool(Tool::kMeasure);
+    if (!control) {
+      switch (event.key) {
+        case GLFW_KEY_N:
+          return setTool(Tool::kNavigate);
+        case GLFW_KEY_G:
+          return setTool(Tool::kGrow);
+        case GLFW_KEY_M:
+          return setTool(Tool::kMeasure);
+        case GLFW_KEY_P:
+          return setTool(Tool::kPolygon);
+        case GLFW_KEY_V:
+          return setTool(Tool::kMove);
+        case GLFW_KEY_E:
+          if (!(cloud_ && cloud_->navigator->flying())) return setTool(Tool::kExtrude);
+          break;
+        case GLFW_KEY_R:
+          scene_.registry().patch<ToolState>(scene_.toolEntity(),
+                                             [](ToolState& t) { t.drawing.rectangle = !t.drawing.rectangle; });
+          return;
+        case GLFW_KEY_C:
+          scene_.registry().patch<ToolState>(scene_.toolEntity(),
+                                             [](ToolState& t) { t.drawing.copy = !t.drawing.copy; });
+          return;
+        case GLFW_KEY_K:
+          return cornerOfSelected();
+        default:
+          break;
+      }
+    }
   }
   if (!cloud_) return;
   // The view works in render pixels (the window's, times the render scale).
@@ -337,9 +545,51 @@ std::optional<Eigen::Vector3d> Viewer::pickAt(double x_px, double y_px) {
   return Eigen::Vector3d(picked->position[0], picked->position[1], picked->position[2]);
 }
 
+// What the pointer at (x, y) (render pixels) snaps to, with its ray and movement; a click also
+// asks the frame for the cloud's point under it.
+Pointer Viewer::pointerAt(double x_px, double y_px, bool pick_point) {
+  const view::Camera& camera = cloud_->navigator->camera();
+  Pointer pointer;
+  pointer.snap = snapCursor(scene_.registry(), camera, x_px, y_px,
+                            pick_point ? PointPicker([this](double x, double y) { return pickAt(x, y); }) : nullptr);
+  pointer.ray = view::rayThroughPixel(camera, x_px, y_px);
+  pointer.pixel = Eigen::Vector2d(x_px, y_px);
+  pointer.motion_px = pointer.pixel - hovered_px_;
+  return pointer;
+}
+
+// Navigate: a click selects the polygon or segment under the cursor (Ctrl adds or removes).
+void Viewer::selectAt(double x_px, double y_px) {
+  const view::Camera& camera = cloud_->navigator->camera();
+  ecs::Entity entity = polygonAt(scene_.registry(), camera, x_px, y_px);
+  if (entity == ecs::kNullEntity) {
+    const std::optional<Snap> snap = snapCursor(scene_.registry(), camera, x_px, y_px, {});
+    if (snap && snap->kind == Snap::Kind::kPlane) entity = snap->source;
+  }
+  if (entity != ecs::kNullEntity) {
+    scene_.select(entity, control_held_);
+  } else if (!control_held_) {
+    scene_.clearSelection();
+  }
+}
+
+void Viewer::cornerOfSelected() {
+  const std::variant<ecs::Entity, std::string> made = scene_.addCornerOfSelected();
+  const std::string message = std::holds_alternative<std::string>(made)
+                                  ? "no corner: " + std::get<std::string>(made)
+                                  : scene_.registry().get<Corner>(std::get<ecs::Entity>(made)).name;
+  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.message = message; });
+}
+
 void Viewer::click(double x_px, double y_px) {
   const Tool tool = scene_.tool().active;
-  if (tool == Tool::kNavigate) return;
+  if (tool == Tool::kNavigate) return selectAt(x_px, y_px);
+  if (isDrawingTool(tool)) {
+    const Pointer pointer = pointerAt(x_px, y_px, true);
+    drawing_.click(pointer, cloud_->navigator->camera());
+    hovered_px_ = pointer.pixel;
+    return;
+  }
   if (tool == Tool::kGrow) {
     const std::optional<Eigen::Vector3d> picked = pickAt(x_px, y_px);
     if (picked) startGrow(*picked);  // nothing on the background
@@ -363,12 +613,18 @@ void Viewer::click(double x_px, double y_px) {
   });
 }
 
-// In the Measure tool, what the cursor would snap to (features only: no readback of the frame).
+// In the Measure and drawing tools, what the cursor would snap to (features only: no readback
+// of the frame), and the drawing tools' preview and direction.
 void Viewer::updateHover() {
   std::optional<Snap> hover;
-  if (cloud_ && scene_.tool().active == Tool::kMeasure && !imgui_.wantsMouse()) {
-    hover = snapCursor(scene_.registry(), cloud_->navigator->camera(), mouse_x_ * renderScale(),
-                       mouse_y_ * renderScale(), {});
+  const Tool tool = scene_.tool().active;
+  if (cloud_ && (tool == Tool::kMeasure || isDrawingTool(tool)) && !imgui_.wantsMouse()) {
+    const Pointer pointer = pointerAt(mouse_x_ * renderScale(), mouse_y_ * renderScale(), false);
+    hover = pointer.snap;
+    if (isDrawingTool(tool)) {
+      drawing_.hover(pointer, cloud_->navigator->camera());
+      hovered_px_ = pointer.pixel;
+    }
   }
   const std::optional<Snap>& now = scene_.tool().hover;
   const bool same = hover.has_value() == now.has_value() &&
@@ -407,6 +663,7 @@ void Viewer::startGrow(const Eigen::Vector3d& picked) {
 }
 
 void Viewer::setTool(Tool tool) {
+  drawing_.reset();
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
     state.active = tool;
     if (tool != Tool::kMeasure) state.measure_started = state.measure_done = false;

@@ -19,9 +19,11 @@
 #include "engine/jobs/job_system.h"
 #include "engine/render/point_renderer.h"
 #include "reco/parameters.h"
+#include "ui/viewer/drawing_tools.h"
 #include "ui/viewer/grow_session.h"
 #include "ui/viewer/imgui_layer.h"
 #include "ui/viewer/navigation.h"
+#include "ui/viewer/project_session.h"
 #include "ui/viewer/scene_overlay.h"
 #include "ui/viewer/scene_state.h"
 #include "ui/viewer/screenshot.h"
@@ -54,6 +56,7 @@ struct LoadProgress {
   double fraction = 0.0;
   std::optional<std::string> error;
   std::string temporary;  // an import's octree, removed by the viewer if it closes before opening it
+  bool finished = false;  // the whole cloud is open (a preview may have shown before)
 };
 
 // The grow tool's panel values: the user's settings and what the last click derived.
@@ -73,10 +76,16 @@ class Viewer {
  private:
   // --- frame steps (viewer.cpp) ---
   void startLoading();
-  void openCloud(std::shared_ptr<const lod::Octree> octree, std::string temporary, std::optional<view::Camera> home);
+  // Shows `octree`; a `preview` of an import is replaced by the whole cloud when that is ready.
+  void openCloud(std::shared_ptr<const lod::Octree> octree, std::string temporary, std::optional<view::Camera> home,
+                 bool preview = false);
   void handleEvents(const std::vector<InputEvent>& events);
   void handleViewEvent(const InputEvent& event);
   void click(double x_px, double y_px);
+  bool drawingKey(const InputEvent& event);
+  Pointer pointerAt(double x_px, double y_px, bool pick_point);
+  void selectAt(double x_px, double y_px);
+  void cornerOfSelected();
   void startGrow(const Eigen::Vector3d& picked);
   std::optional<reco::GrowParameters> clickParameters(const Eigen::Vector3d& picked) const;
   void setTool(Tool tool);
@@ -84,6 +93,11 @@ class Viewer {
   void undo();
   void redo();
   void deleteSelected();
+  void openProject();
+  cad::Project currentProject() const;
+  void saveProject();
+  void autosaveProject(bool now);
+  void exportProject();
   void render(bool screenshot, const std::string& screenshot_name);
   void presentInterfaceOnly();
   std::optional<Eigen::Vector3d> pickAt(double x_px, double y_px);
@@ -93,13 +107,18 @@ class Viewer {
 
   // --- the palette (viewer_panels.cpp) ---
   void drawPanels();
+  void placeInColumn(bool right);
+  void endInColumn(bool right);
   void drawToolsPanel();
+  void drawDrawingToolState();
   void drawGrowPanel();
   void drawSegmentsPanel();
   void drawViewPanel();
+  void drawProjectPanel();
   void drawStatusBar();
 
   ViewerOptions options_;
+  ProjectSession project_;  // first: a bad project file fails before any window opens
   WindowSystem windows_;
   gpu::Instance instance_;
   Window window_;
@@ -111,6 +130,7 @@ class Viewer {
   ScreenshotCopy screenshots_;
   jobs::JobSystem jobs_;  // before the cloud: the cache waits for loads the jobs run
   SceneState scene_;
+  DrawingTools drawing_{scene_};
   SceneOverlay overlay_;
   std::unique_ptr<LoadedCloud> cloud_;
   std::shared_ptr<LoadProgress> load_progress_ = std::make_shared<LoadProgress>();
@@ -140,6 +160,14 @@ class Viewer {
   std::vector<double> moving_frame_ms_;        // frame times while the camera moved (scripted runs report them)
   std::vector<double> splat_ms_, resolve_ms_;  // GPU times of moving frames (ViewerOptions::profile)
   double mouse_x_ = 0.0, mouse_y_ = 0.0;       // window pixels
+  Eigen::Vector2d hovered_px_ = Eigen::Vector2d::Zero();  // render pixels at the last hover
+  bool control_held_ = false;
+  std::string project_message_;
+  float left_column_y_ = 10.0f,
+        right_column_y_ = 10.0f;  // where the next panel of each column goes  // the last save's or export's outcome
+  // The name fields of the segment list: the item they edit, and the text as typed.
+  ecs::Entity rename_entity_ = ecs::kNullEntity, group_entity_ = ecs::kNullEntity;
+  char rename_buffer_[128] = {}, group_buffer_[128] = {};
 };
 
 }  // namespace plumb::viewer

@@ -16,12 +16,16 @@
 namespace plumb::viewer {
 
 struct ViewerOptions {
-  std::string cloud;                   // an octree or a point file (imported in the background); empty: the demo
+  std::string cloud;  // an octree or a point file (imported in the background); empty: the demo
+  // The project (.plumbproj) to open and save; empty: "<cloud>.plumbproj" (the demo's in the
+  // cache directory). Its cloud and camera are used unless `cloud` and `camera` are given.
+  std::string project;
   std::string script;                  // a session script (session_script.h); empty: interactive
   std::string screenshot_dir;          // where the script's screenshots go
   std::string dump_scene;              // the scene as JSON when the viewer closes
   std::optional<view::Camera> camera;  // the first view; default: the demo's or an iso view of the cloud
   int width = 1280, height = 720;
+  double plane_threshold_m = 0.02;  // the Grow tool's t_p to begin with (its panel changes it)
   std::string gpu;                  // DeviceChoice::prefer; empty: PLUMB_GPU or automatic
   std::uint64_t budget_points = 0;  // 0: the device's default (lower on the CPU)
   double render_scale = 0.0;        // 0: the device's default (half resolution on the CPU)

@@ -7,9 +7,11 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
+#include "ui/viewer/project_bridge.h"
 #include "ui/viewer/viewer.h"
 
 namespace plumb::viewer {
@@ -24,16 +26,49 @@ const char* kDetails[] = {"From the view", "Low", "Medium", "High", "Full (every
 
 }  // namespace
 
+// The panels stand in two columns, each below the one before it (their sizes follow what they
+// show), the tools and the grow parameters on the left, the scene, the view and the project on
+// the right.
+void Viewer::placeInColumn(bool right) {
+  const VkExtent2D size = window_.framebufferSize();
+  float& next_y = right ? right_column_y_ : left_column_y_;
+  const float x = right ? static_cast<float>(size.width) - 400.0f : 10.0f;
+  ImGui::SetNextWindowPos(ImVec2(x, next_y), ImGuiCond_Always);
+}
+
+void Viewer::endInColumn(bool right) {
+  float& next_y = right ? right_column_y_ : left_column_y_;
+  next_y = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y + 8.0f;
+  ImGui::End();
+}
+
 void Viewer::drawPanels() {
+  left_column_y_ = right_column_y_ = 10.0f;
   drawToolsPanel();
   drawGrowPanel();
   drawSegmentsPanel();
   drawViewPanel();
+  drawProjectPanel();
   drawStatusBar();
 }
 
+void Viewer::drawProjectPanel() {
+  placeInColumn(true);
+  ImGui::Begin("Project", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  const bool unsaved = project_.unsaved(documentVersion(scene_.registry()));
+  ImGui::Text("%s%s", std::filesystem::path(project_.path()).filename().string().c_str(), unsaved ? " *" : "");
+  tooltip(project_.path().c_str());
+  if (ImGui::Button("Save")) saveProject();
+  tooltip("Save the project (Ctrl+S); unsaved changes also go to an autosave beside it every 30 s");
+  ImGui::SameLine();
+  if (ImGui::Button("Export")) exportProject();
+  tooltip("Write glTF (.glb), OBJ, DXF and a CSV of the corners beside the project");
+  if (!project_message_.empty()) ImGui::TextWrapped("%s", project_message_.c_str());
+  endInColumn(true);
+}
+
 void Viewer::drawToolsPanel() {
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  placeInColumn(false);
   ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   const Tool active = scene_.tool().active;
   struct Entry {
@@ -42,9 +77,17 @@ void Viewer::drawToolsPanel() {
     const char* help;
   };
   static constexpr Entry kTools[] = {
-      {Tool::kNavigate, "Navigate", "Orbit, pan, zoom; clicks do nothing (N)"},
+      {Tool::kNavigate, "Navigate", "Orbit, pan, zoom; a click selects a segment or polygon, Ctrl+click adds (N)"},
       {Tool::kGrow, "Grow", "Click a surface: the planes around it grow at the detail the view shows (G)"},
       {Tool::kMeasure, "Measure", "Click two points: their distance (M)"},
+      {Tool::kPolygon, "Polygon",
+       "Click snapped vertices; the first again, or Enter, closes. R: a rectangle from three points (P)"},
+      {Tool::kMove, "Move/Copy",
+       "Click a polygon, a base point, then where it goes; C toggles Copy. Hold Shift to lock the direction; "
+       "type a distance and Enter (V)"},
+      {Tool::kExtrude, "Extrude",
+       "Click a polygon, then where its top face goes: a closed prism. Hold Shift to lock a direction found "
+       "by pointing; type a distance and Enter (E)"},
   };
   for (const Entry& entry : kTools) {
     if (ImGui::RadioButton(entry.name, active == entry.tool)) setTool(entry.tool);
@@ -63,8 +106,19 @@ void Viewer::drawToolsPanel() {
   tooltip("Redo (Ctrl+Y)");
   ImGui::SameLine();
   if (ImGui::Button("Delete")) deleteSelected();
-  tooltip("Delete the selected segments with their edges and corners (Delete)");
+  tooltip("Delete the selected items; a segment takes its edges and corners (Delete)");
+  if (ImGui::Button("Corner of 3")) cornerOfSelected();
+  tooltip("A corner where the three selected segments meet, even with no points near it (K)");
+  ImGui::SameLine();
+  if (ImGui::Button("Group")) scene_.groupSelected();
+  tooltip("Put the selected items in a new group (Ctrl+G)");
+  ImGui::SameLine();
+  if (ImGui::Button("Ungroup")) scene_.ungroupSelected();
+  tooltip("Take the selected items out of their groups");
   const ToolState& tool = scene_.tool();
+  if (tool.active == Tool::kPolygon || tool.active == Tool::kMove || tool.active == Tool::kExtrude) {
+    drawDrawingToolState();
+  }
   if (tool.active == Tool::kMeasure) {
     if (tool.measure_done) {
       ImGui::Text("Distance %.4f m (%s to %s)", (tool.measure_to - tool.measure_from).norm(),
@@ -75,11 +129,39 @@ void Viewer::drawToolsPanel() {
     ImGui::TextDisabled("snaps to corners, edges, planes, points");
     if (tool.hover) ImGui::Text("under the cursor: %s", snapKindName(tool.hover->kind));
   }
-  ImGui::End();
+  endInColumn(false);
+}
+
+// The drawing tool's options and what it says: the next step, the direction, a typed distance.
+void Viewer::drawDrawingToolState() {
+  const ToolState& tool = scene_.tool();
+  const DrawingState& d = tool.drawing;
+  if (tool.active == Tool::kPolygon) {
+    bool rectangle = d.rectangle;
+    if (ImGui::Checkbox("Rectangle from three points", &rectangle)) {
+      scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.rectangle = rectangle; });
+    }
+    tooltip("Two clicks give one side, the third the opposite side (R)");
+  }
+  if (tool.active == Tool::kMove) {
+    bool copy = d.copy;
+    if (ImGui::Checkbox("Copy", &copy)) {
+      scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.copy = copy; });
+    }
+    tooltip("Leave the original where it is; each click makes a copy from the last (C)");
+  }
+  if (!d.message.empty()) ImGui::TextWrapped("%s", d.message.c_str());
+  if (d.direction) {
+    ImGui::Text("direction %s: (%.3f, %.3f, %.3f)%s", d.direction->source, d.direction->vector.x(),
+                d.direction->vector.y(), d.direction->vector.z(), d.direction_locked ? " LOCKED" : "");
+  }
+  ImGui::TextDisabled("hold Shift to lock the direction");
+  if (!d.typed.empty()) ImGui::Text("distance: %s m (Enter)", d.typed.c_str());
+  if (tool.hover) ImGui::Text("under the cursor: %s", snapKindName(tool.hover->kind));
 }
 
 void Viewer::drawGrowPanel() {
-  ImGui::SetNextWindowPos(ImVec2(10, 190), ImGuiCond_FirstUseEver);
+  placeInColumn(false);
   ImGui::Begin("Grow", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::SliderFloat("t_p (m)", &grow_panel_.plane_threshold_m, 0.001f, 0.1f, "%.3f", ImGuiSliderFlags_Logarithmic);
   tooltip("The plane threshold: how far a point may lie off its plane. Set it near 3 x the scanner's noise.");
@@ -115,31 +197,41 @@ void Viewer::drawGrowPanel() {
     if (ImGui::Button("Cancel")) cloud_->grow->cancel();
     tooltip("Stop the running grow (Escape)");
   }
-  ImGui::End();
+  endInColumn(false);
 }
 
 void Viewer::drawSegmentsPanel() {
-  const VkExtent2D size = window_.framebufferSize();
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(size.width) - 400, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(390, 220), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Segments");
   ecs::Registry& registry = scene_.registry();
-  if (ImGui::BeginTable("segments", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_Borders)) {
-    ImGui::TableSetupColumn("Name");
+  placeInColumn(true);
+  const bool polygons = registry.count<Polygon>() > 0;
+  ImGui::SetNextWindowSize(ImVec2(390, polygons ? 340.0f : 220.0f), ImGuiCond_Always);
+  ImGui::Begin("Segments", nullptr, ImGuiWindowFlags_NoResize);
+  const auto group_name = [&](ecs::Entity entity) -> std::string {
+    const InGroup* in = registry.tryGet<InGroup>(entity);
+    const Group* group = in ? registry.tryGet<Group>(in->group) : nullptr;
+    return group ? group->name : "";
+  };
+  std::vector<ecs::Entity> clicked;  // applied after the walk: no changes while viewing
+  const auto row = [&](ecs::Entity entity, const std::string& name) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    const std::string label = name + "##" + std::to_string(entity.id());
+    if (ImGui::Selectable(label.c_str(), registry.has<Selection>(entity), ImGuiSelectableFlags_SpanAllColumns)) {
+      clicked.push_back(entity);
+    }
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(group_name(entity).c_str());
+  };
+  const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_Borders;
+  if (ImGui::BeginTable("segments", 5, flags, ImVec2(0, 150))) {
+    ImGui::TableSetupColumn("Segment");
+    ImGui::TableSetupColumn("Group");
     ImGui::TableSetupColumn("Points");
     ImGui::TableSetupColumn("Area m^2");
     ImGui::TableSetupColumn("lambda2 mm^2");
     ImGui::TableHeadersRow();
-    std::vector<std::pair<ecs::Entity, bool>> clicked;  // applied after the walk: no changes while viewing
     registry.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      const bool selected = registry.has<Selection>(entity);
-      const std::string label =
-          (segment.growing ? std::string("(growing)") : segment.name) + "##" + std::to_string(entity.id());
-      if (ImGui::Selectable(label.c_str(), selected, ImGuiSelectableFlags_SpanAllColumns)) {
-        clicked.emplace_back(entity, selected);
-      }
+      row(entity, segment.growing ? std::string("(growing)") : segment.name);
       ImGui::TableNextColumn();
       ImGui::Text("%" PRIu64, segment.points);
       ImGui::TableNextColumn();
@@ -148,26 +240,58 @@ void Viewer::drawSegmentsPanel() {
       ImGui::Text("%.3f", segment.lambda2 * 1e6);
     });
     ImGui::EndTable();
-    const bool extend = ImGui::GetIO().KeyCtrl;
-    for (const auto& [entity, was_selected] : clicked) {
-      if (!extend) {
-        std::vector<ecs::Entity> others;
-        registry.view<Selection>().each([&](ecs::Entity e, const Selection&) { others.push_back(e); });
-        for (const ecs::Entity e : others) registry.remove<Selection>(e);
+  }
+  if (polygons && ImGui::BeginTable("polygons", 4, flags, ImVec2(0, 110))) {
+    ImGui::TableSetupColumn("Polygon");
+    ImGui::TableSetupColumn("Group");
+    ImGui::TableSetupColumn("Vertices");
+    ImGui::TableSetupColumn("Extruded m");
+    ImGui::TableHeadersRow();
+    registry.view<Polygon>().each([&](ecs::Entity entity, const Polygon& polygon) {
+      row(entity, polygon.name);
+      ImGui::TableNextColumn();
+      ImGui::Text("%zu%s", polygon.vertices.size(), polygon.plane != ecs::kNullEntity ? " on a plane" : "");
+      ImGui::TableNextColumn();
+      if (!polygon.extrusion.isZero(0.0)) ImGui::Text("%.4f", polygon.extrusion.norm());
+    });
+    ImGui::EndTable();
+  }
+  const bool extend = ImGui::GetIO().KeyCtrl;
+  for (const ecs::Entity entity : clicked) scene_.select(entity, extend);
+  // Renaming the one selected item.
+  const std::vector<ecs::Entity> selected = scene_.selected();
+  if (selected.size() == 1) {
+    const ecs::Entity entity = selected.front();
+    std::string name;
+    if (const Segment* segment = registry.tryGet<Segment>(entity)) name = segment->name;
+    if (const Polygon* polygon = registry.tryGet<Polygon>(entity)) name = polygon->name;
+    const InGroup* in = registry.tryGet<InGroup>(entity);
+    if (rename_entity_ != entity) {
+      rename_entity_ = entity;
+      std::snprintf(rename_buffer_, sizeof rename_buffer_, "%s", name.c_str());
+    }
+    if (ImGui::InputText("Name", rename_buffer_, sizeof rename_buffer_, ImGuiInputTextFlags_EnterReturnsTrue) &&
+        name != rename_buffer_) {
+      scene_.rename(entity, rename_buffer_);
+    }
+    tooltip("Type a name and press Enter");
+    if (in && registry.has<Group>(in->group)) {
+      if (group_entity_ != in->group) {
+        group_entity_ = in->group;
+        std::snprintf(group_buffer_, sizeof group_buffer_, "%s", registry.get<Group>(in->group).name.c_str());
       }
-      if (was_selected && extend) {
-        registry.remove<Selection>(entity);
-      } else {
-        registry.emplaceOrReplace(entity, Selection{});
+      if (ImGui::InputText("Group name", group_buffer_, sizeof group_buffer_, ImGuiInputTextFlags_EnterReturnsTrue)) {
+        scene_.rename(in->group, group_buffer_);
       }
     }
+  } else {
+    rename_entity_ = group_entity_ = ecs::kNullEntity;
   }
-  ImGui::End();
+  endInColumn(true);
 }
 
 void Viewer::drawViewPanel() {
-  const VkExtent2D size = window_.framebufferSize();
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(size.width) - 400, 240), ImGuiCond_FirstUseEver);
+  placeInColumn(true);
   ImGui::Begin("View", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   if (cloud_) {
     Navigator& navigator = *cloud_->navigator;
@@ -222,7 +346,7 @@ void Viewer::drawViewPanel() {
   ImGui::Text("%.1f ms per frame (%.0f fps)", frame_ms_avg_, frame_ms_avg_ > 0 ? 1e3 / frame_ms_avg_ : 0.0);
   ImGui::Text("%" PRIu64 " points in %" PRIu64 " nodes, %" PRIu64 " to load", last_stats_.points_drawn,
               last_stats_.nodes_drawn, last_stats_.nodes_missing);
-  ImGui::End();
+  endInColumn(true);
 }
 
 void Viewer::drawStatusBar() {
@@ -244,16 +368,26 @@ void Viewer::drawStatusBar() {
     }
   } else {
     const bool growing = cloud_->grow && cloud_->grow->busy();
-    ImGui::Text("%s | %s | %zu segments | %s",
-                scene_.tool().active == Tool::kGrow      ? "Grow"
-                : scene_.tool().active == Tool::kMeasure ? "Measure"
-                                                         : "Navigate",
+    ImGui::Text("%s | %s | %zu segments, %zu polygons | %s", toolName(scene_.tool().active),
                 growing ? "growing..." : "ready", scene_.registry().count<Segment>(),
-                last_stats_.complete() ? "all nodes loaded" : "streaming");
+                scene_.registry().count<Polygon>(), last_stats_.complete() ? "all nodes loaded" : "streaming");
     const lod::NodeCacheStats cache = cloud_->cache->stats();
     ImGui::SameLine();
     ImGui::Text("| cache %.0f MB | %.0f fps", static_cast<double>(cache.bytes) / 1e6,
                 frame_ms_avg_ > 0 ? 1e3 / frame_ms_avg_ : 0.0);
+    // A preview is shown while the whole file is imported (or failed to).
+    const std::scoped_lock lock(load_progress_->mutex);
+    if (load_progress_->error) {
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "| preview only: %s", load_progress_->error->c_str());
+    } else if (!load_progress_->finished) {
+      ImGui::SameLine();
+      ImGui::TextUnformatted("| preview;");
+      ImGui::SameLine();
+      ImGui::ProgressBar(static_cast<float>(load_progress_->fraction), ImVec2(160, 0));
+      ImGui::SameLine();
+      ImGui::TextUnformatted(load_progress_->phase.c_str());
+    }
   }
   ImGui::End();
 }

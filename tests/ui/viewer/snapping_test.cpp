@@ -7,49 +7,21 @@
 
 #include "engine/ecs/registry.h"
 #include "engine/view/camera_controls.h"
+#include "tests/ui/viewer/room_corner.h"
 #include "ui/viewer/components.h"
 
 namespace plumb::viewer {
 namespace {
 
-// Three faces of a room's corner at the origin, 2 m each, seen from inside, from (4, 3.5, 2.5):
-//
-//        z
-//        |  wall x = 0 (y, z in [0, 2])
-//        |______ y   wall y = 0 (x, z in [0, 2])
-//       /           floor z = 0 (x, y in [0, 2])
-//      x
+// The room corner of room_corner.h.
 class SnappingTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    camera_.position = {4.0, 3.5, 2.5};
-    camera_.target = {0.5, 0.5, 0.5};
-    camera_.viewport_width_px = 800;
-    camera_.viewport_height_px = 600;
-    const std::array<Eigen::Vector3d, 3> normals{Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                                                 Eigen::Vector3d::UnitZ()};
-    for (std::size_t i = 0; i < 3; ++i) {
-      const Eigen::Vector3d n = normals[i], u = normals[(i + 1) % 3], v = normals[(i + 2) % 3];
-      Segment segment;
-      segment.plane.valid = true;
-      segment.plane.normal = n;
-      segment.plane.centroid = u + v;  // the face's centre
-      segment.plane.offset = 0.0;
-      auto outline = std::make_shared<reco::PlaneOutline>();
-      outline->origin = Eigen::Vector3d::Zero();
-      outline->axis_u = u;
-      outline->axis_v = v;
-      outline->shape.vertices = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
-      outline->shape.triangles = {{0, 1, 2}, {0, 2, 3}};
-      segment.outline = outline;
-      segments_[i] = registry_.create();
-      registry_.emplace(segments_[i], std::move(segment));
-    }
-    // The edges between the walls and the floor, and the corner, as a grow would make them.
-    edge_ = registry_.create();
-    registry_.emplace(edge_, Edge{{segments_[0], segments_[1]}, {0, 0, 0.2}, {0, 0, 1.8}, {0, 0, 1}, 100});
-    corner_ = registry_.create();
-    registry_.emplace(corner_, Corner{{segments_[0], segments_[1], segments_[2]}, {0, 0, 0}, {}});
+    const fixtures::RoomCorner room = fixtures::makeRoomCorner(registry_);
+    camera_ = room.camera;
+    segments_ = room.segments;
+    edge_ = room.edge;
+    corner_ = room.corner;
   }
 
   Eigen::Vector2d pixelOf(const Eigen::Vector3d& world) const { return *view::pixelOf(camera_, world); }

@@ -1,0 +1,28 @@
+#pragma once
+// The corners of a project as CSV (RFC 4180: comma separated, CRLF line ends, a field quoted when
+// it holds a comma, a double quote, CR or LF, with its double quotes doubled), for spreadsheets
+// and survey software. One header line, then one line per corner in the project's order:
+//
+//   id,name,x,y,z,segment_1,segment_2,segment_3,support_1,support_2,support_3
+//
+// x, y, z: world coordinates in metres, every digit of the double (cad/number_text.h);
+// segment_k: the ids of the three segments, empty for none; support_k: their lambda2, m^2.
+
+#include <string>
+
+#include "cad/project.h"
+
+namespace plumb {
+class AtomicFile;
+}
+
+namespace plumb::cad {
+
+// Writes the corners of `project` to `out` without committing it. Throws plumb::Error naming
+// out.path() when the project breaks a rule of findProjectProblem or the write fails.
+void exportCsv(const Project& project, AtomicFile& out);
+
+// Writes them to `path` atomically: on any error nothing appears there. Throws as above.
+void exportCsv(const Project& project, const std::string& path);
+
+}  // namespace plumb::cad

@@ -1,0 +1,353 @@
+#include "cad/project_file.h"
+
+#include <string_view>
+
+#include "cad/json_place.h"
+#include "cad/project_validation.h"
+#include "cad/text_file.h"
+#include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
+#include "engine/view/camera_json.h"
+
+namespace plumb::cad {
+namespace {
+
+using Json = nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;
+
+constexpr std::string_view kFormat = "plumb-project";
+constexpr std::string_view kWhat = "Plumb project file";
+
+// Reading. Each item's fields are checked against the list docs/project-file.md gives.
+
+std::string optionalString(const JsonPlace& at, std::string_view name) {
+  const auto field = at.optionalField(name);
+  return field ? field->string() : std::string();
+}
+
+ItemId optionalReference(const JsonPlace& at, std::string_view name) {
+  const auto field = at.optionalField(name);
+  return field ? field->whole() : kNoItem;
+}
+
+template <typename Read>
+auto readList(const JsonPlace& root, std::string_view name, Read read) {
+  std::vector<decltype(read(root))> items;
+  if (const auto list = root.optionalField(name)) {
+    const std::size_t count = list->expectArray();
+    items.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) items.push_back(read(list->element(i)));
+  }
+  return items;
+}
+
+template <typename Value, std::size_t N, typename Read>
+std::array<Value, N> readArray(const JsonPlace& at, Read read) {
+  at.expectArray(N);
+  std::array<Value, N> values{};
+  for (std::size_t i = 0; i < N; ++i) values[i] = read(at.element(i));
+  return values;
+}
+
+std::vector<Eigen::Vector2d> readPoints2(const JsonPlace& at) {
+  std::vector<Eigen::Vector2d> points(at.expectArray());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = at.element(i).vector2();
+  return points;
+}
+
+Group readGroup(const JsonPlace& at) {
+  at.expectObject({"id", "name"});
+  return {at.field("id").id(), optionalString(at, "name")};
+}
+
+reco::Plane readPlane(const JsonPlace& at) {
+  at.expectObject(
+      {"normal", "tangent", "bitangent", "centroid", "offset", "lambda0", "lambda1", "lambda2", "point_count", "rms"});
+  reco::Plane plane;
+  plane.valid = true;
+  plane.normal = at.field("normal").vector3();
+  plane.tangent = at.field("tangent").vector3();
+  plane.bitangent = at.field("bitangent").vector3();
+  plane.centroid = at.field("centroid").vector3();
+  plane.offset = at.field("offset").number();
+  plane.lambda0 = at.field("lambda0").number();
+  plane.lambda1 = at.field("lambda1").number();
+  plane.lambda2 = at.field("lambda2").number();
+  plane.point_count = at.field("point_count").whole();
+  plane.rms = at.field("rms").number();
+  return plane;
+}
+
+reco::PlaneOutline readOutline(const JsonPlace& at) {
+  at.expectObject(
+      {"origin", "axis_u", "axis_v", "rings", "vertices", "triangles", "area_m2", "cell_m", "raster_cells"});
+  reco::PlaneOutline outline;
+  outline.origin = at.field("origin").vector3();
+  outline.axis_u = at.field("axis_u").vector3();
+  outline.axis_v = at.field("axis_v").vector3();
+  reco::Outline& shape = outline.shape;
+  const JsonPlace rings = at.field("rings");
+  shape.rings.resize(rings.expectArray());
+  for (std::size_t r = 0; r < shape.rings.size(); ++r) shape.rings[r] = readPoints2(rings.element(r));
+  shape.vertices = readPoints2(at.field("vertices"));
+  const JsonPlace triangles = at.field("triangles");
+  shape.triangles.resize(triangles.expectArray());
+  for (std::size_t t = 0; t < shape.triangles.size(); ++t) {
+    shape.triangles[t] =
+        readArray<std::uint32_t, 3>(triangles.element(t), [](const JsonPlace& v) { return v.index(); });
+  }
+  shape.area_m2 = at.field("area_m2").number();
+  shape.cell_m = at.field("cell_m").number();
+  const auto raster =
+      readArray<std::uint32_t, 2>(at.field("raster_cells"), [](const JsonPlace& v) { return v.index(); });
+  shape.raster_width_cells = raster[0];
+  shape.raster_height_cells = raster[1];
+  return outline;
+}
+
+Segment readSegment(const JsonPlace& at) {
+  at.expectObject({"id", "name", "group", "plane", "outline"});
+  Segment segment;
+  segment.id = at.field("id").id();
+  segment.name = optionalString(at, "name");
+  segment.group = optionalReference(at, "group");
+  segment.plane = readPlane(at.field("plane"));
+  if (const auto outline = at.optionalField("outline")) segment.outline = readOutline(*outline);
+  return segment;
+}
+
+Edge readEdge(const JsonPlace& at) {
+  at.expectObject({"id", "name", "group", "segments", "start", "end"});
+  Edge edge;
+  edge.id = at.field("id").id();
+  edge.name = optionalString(at, "name");
+  edge.group = optionalReference(at, "group");
+  edge.segments = readArray<ItemId, 2>(at.field("segments"), [](const JsonPlace& v) { return v.whole(); });
+  edge.start = at.field("start").vector3();
+  edge.end = at.field("end").vector3();
+  return edge;
+}
+
+Corner readCorner(const JsonPlace& at) {
+  at.expectObject({"id", "name", "group", "segments", "position", "support"});
+  Corner corner;
+  corner.id = at.field("id").id();
+  corner.name = optionalString(at, "name");
+  corner.group = optionalReference(at, "group");
+  corner.segments = readArray<ItemId, 3>(at.field("segments"), [](const JsonPlace& v) { return v.whole(); });
+  corner.position = at.field("position").vector3();
+  corner.support = readArray<double, 3>(at.field("support"), [](const JsonPlace& v) { return v.number(); });
+  return corner;
+}
+
+Polygon readPolygon(const JsonPlace& at) {
+  at.expectObject({"id", "name", "group", "plane", "vertices", "extrusion"});
+  Polygon polygon;
+  polygon.id = at.field("id").id();
+  polygon.name = optionalString(at, "name");
+  polygon.group = optionalReference(at, "group");
+  polygon.plane = optionalReference(at, "plane");
+  const JsonPlace vertices = at.field("vertices");
+  polygon.vertices.resize(vertices.expectArray());
+  for (std::size_t v = 0; v < polygon.vertices.size(); ++v) polygon.vertices[v] = vertices.element(v).vector3();
+  if (const auto extrusion = at.optionalField("extrusion")) polygon.extrusion = extrusion->vector3();
+  return polygon;
+}
+
+// Writing, in the order of docs/project-file.md (an ordered_json keeps it).
+
+OrderedJson vector(const Eigen::Vector3d& v) {
+  return OrderedJson::array({v.x(), v.y(), v.z()});
+}
+OrderedJson vector(const Eigen::Vector2d& v) {
+  return OrderedJson::array({v.x(), v.y()});
+}
+
+OrderedJson planeJson(const reco::Plane& plane) {
+  OrderedJson json;
+  json["normal"] = vector(plane.normal);
+  json["tangent"] = vector(plane.tangent);
+  json["bitangent"] = vector(plane.bitangent);
+  json["centroid"] = vector(plane.centroid);
+  json["offset"] = plane.offset;
+  json["lambda0"] = plane.lambda0;
+  json["lambda1"] = plane.lambda1;
+  json["lambda2"] = plane.lambda2;
+  json["point_count"] = plane.point_count;
+  json["rms"] = plane.rms;
+  return json;
+}
+
+OrderedJson pointsJson(const std::vector<Eigen::Vector2d>& points) {
+  OrderedJson json = OrderedJson::array();
+  for (const Eigen::Vector2d& p : points) json.push_back(vector(p));
+  return json;
+}
+
+OrderedJson outlineJson(const reco::PlaneOutline& outline) {
+  OrderedJson json;
+  json["origin"] = vector(outline.origin);
+  json["axis_u"] = vector(outline.axis_u);
+  json["axis_v"] = vector(outline.axis_v);
+  json["rings"] = OrderedJson::array();
+  for (const auto& ring : outline.shape.rings) json["rings"].push_back(pointsJson(ring));
+  json["vertices"] = pointsJson(outline.shape.vertices);
+  json["triangles"] = OrderedJson::array();
+  for (const auto& [a, b, c] : outline.shape.triangles) json["triangles"].push_back({a, b, c});
+  json["area_m2"] = outline.shape.area_m2;
+  json["cell_m"] = outline.shape.cell_m;
+  json["raster_cells"] = {outline.shape.raster_width_cells, outline.shape.raster_height_cells};
+  return json;
+}
+
+// The fields every item starts with.
+OrderedJson itemJson(ItemId id, const std::string& name, ItemId group) {
+  OrderedJson json;
+  json["id"] = id;
+  json["name"] = name;
+  json["group"] = group;
+  return json;
+}
+
+OrderedJson projectJson(const Project& project) {
+  OrderedJson json;
+  json["format"] = kFormat;
+  json["version"] = kProjectFileVersion;
+  json["cloud"] = project.cloud_path;
+  if (project.camera) json["camera"] = OrderedJson::parse(view::cameraJsonObject(*project.camera));
+  json["groups"] = OrderedJson::array();
+  for (const Group& group : project.groups) json["groups"].push_back({{"id", group.id}, {"name", group.name}});
+  json["segments"] = OrderedJson::array();
+  for (const Segment& segment : project.segments) {
+    OrderedJson item = itemJson(segment.id, segment.name, segment.group);
+    item["plane"] = planeJson(segment.plane);
+    item["outline"] = outlineJson(segment.outline);
+    json["segments"].push_back(std::move(item));
+  }
+  json["edges"] = OrderedJson::array();
+  for (const Edge& edge : project.edges) {
+    OrderedJson item = itemJson(edge.id, edge.name, edge.group);
+    item["segments"] = edge.segments;
+    item["start"] = vector(edge.start);
+    item["end"] = vector(edge.end);
+    json["edges"].push_back(std::move(item));
+  }
+  json["corners"] = OrderedJson::array();
+  for (const Corner& corner : project.corners) {
+    OrderedJson item = itemJson(corner.id, corner.name, corner.group);
+    item["segments"] = corner.segments;
+    item["position"] = vector(corner.position);
+    item["support"] = corner.support;
+    json["corners"].push_back(std::move(item));
+  }
+  json["polygons"] = OrderedJson::array();
+  for (const Polygon& polygon : project.polygons) {
+    OrderedJson item = itemJson(polygon.id, polygon.name, polygon.group);
+    item["plane"] = polygon.plane;
+    item["vertices"] = OrderedJson::array();
+    for (const Eigen::Vector3d& v : polygon.vertices) item["vertices"].push_back(vector(v));
+    item["extrusion"] = vector(polygon.extrusion);
+    json["polygons"].push_back(std::move(item));
+  }
+  return json;
+}
+
+// Objects one field per line, arrays of numbers (a vector, a triangle) on one line, longer arrays
+// one element per line: a file people can read and diff. nlohmann writes each double with the
+// fewest digits that read back as the same bits.
+void appendText(std::string& out, const OrderedJson& value, std::size_t indent) {
+  constexpr std::size_t kLineLimit = 100;
+  const std::string inner(indent + 2, ' ');
+  if (value.is_object() && !value.empty()) {
+    out += "{\n";
+    bool first = true;
+    for (const auto& [key, element] : value.items()) {
+      if (!first) out += ",\n";
+      out += inner;
+      out += OrderedJson(key).dump();
+      out += ": ";
+      appendText(out, element, indent + 2);
+      first = false;
+    }
+    out += '\n';
+    out.append(indent, ' ');
+    out += '}';
+    return;
+  }
+  if (value.is_array() && !value.empty()) {
+    bool flat = true;
+    for (const auto& element : value) flat = flat && !element.is_object();
+    std::string line = flat ? value.dump() : std::string();
+    if (flat && line.size() <= kLineLimit) {
+      out += line;
+      return;
+    }
+    out += "[\n";
+    bool first = true;
+    for (const auto& element : value) {
+      if (!first) out += ",\n";
+      out += inner;
+      appendText(out, element, indent + 2);
+      first = false;
+    }
+    out += '\n';
+    out.append(indent, ' ');
+    out += ']';
+    return;
+  }
+  out += value.dump();
+}
+
+}  // namespace
+
+Project readProjectFile(const std::string& path) {
+  const Json json = parseJsonFile(path, readTextFile(path, "project file"), kWhat);
+  const JsonPlace root(path, json, "");
+  if (!json.is_object()) {
+    throw root.error(std::string("expected a JSON object (a Plumb project file), found ") + json.type_name());
+  }
+  // The format first: another kind of file is called that, not a list of unknown fields.
+  const JsonPlace format = root.field("format");
+  if (!format.value().is_string() || format.value().get<std::string>() != kFormat) {
+    throw format.error("expected \"plumb-project\", found " + format.value().dump() + " (not a Plumb project file)");
+  }
+  const JsonPlace version = root.field("version");
+  if (const std::uint64_t number = version.whole(1); number > static_cast<std::uint64_t>(kProjectFileVersion)) {
+    throw version.error("written by a newer Plumb (version " + std::to_string(number) + "); this build reads up to " +
+                        std::to_string(kProjectFileVersion) + ": update Plumb");
+  }
+  root.expectObject({"format", "version", "cloud", "camera", "groups", "segments", "edges", "corners", "polygons"});
+
+  Project project;
+  project.cloud_path = optionalString(root, "cloud");
+  if (const auto camera = root.optionalField("camera")) {
+    project.camera = view::cameraFromJsonObject(camera->value().dump(), path, camera->place());
+  }
+  project.groups = readList(root, "groups", readGroup);
+  project.segments = readList(root, "segments", readSegment);
+  project.edges = readList(root, "edges", readEdge);
+  project.corners = readList(root, "corners", readCorner);
+  project.polygons = readList(root, "polygons", readPolygon);
+
+  if (const auto problem = findProjectProblem(project)) {
+    throw fileError(path, "field '" + problem->place + "': " + problem->what);
+  }
+  return project;
+}
+
+void writeProjectFile(const Project& project, const std::string& path) {
+  validateProject(project, path, "not writing an invalid project");
+  std::string text;
+  try {
+    appendText(text, projectJson(project), 0);
+  } catch (const nlohmann::json::type_error& error) {
+    // nlohmann refuses to write a string that is not UTF-8.
+    throw fileError(path, std::string("a name or the cloud path is not valid UTF-8 (") + error.what() + ")");
+  }
+  text += "\n";
+  AtomicFile file(path);
+  file.write(text.data(), text.size());
+  file.commit();
+}
+
+}  // namespace plumb::cad

@@ -1,0 +1,91 @@
+// plumb export as a user runs it: a project to glTF, OBJ, DXF and CSV, all of them or none.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+
+#include "cad/project_file.h"
+#include "tests/cad/sample_project.h"
+#include "tests/support/temp_directory.h"
+
+namespace {
+
+struct Outcome {
+  int exit_code;
+  std::string out;
+  std::string err;
+};
+
+class ExportCli : public ::testing::Test {
+ protected:
+  void SetUp() override { plumb::cad::writeProjectFile(plumb::cad::test::sampleProject(), project_); }
+
+  // Runs `plumb export` with `arguments` (shell words).
+  Outcome plumbExport(const std::string& arguments) const {
+    const std::string out = temp_.file("stdout.txt"), err = temp_.file("stderr.txt");
+    const std::string command =
+        std::string(PLUMB_BINARY) + " export " + arguments + " </dev/null >" + out + " 2>" + err;
+    const int status = std::system(command.c_str());
+    Outcome run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, plumb::test::readFile(out), plumb::test::readFile(err)};
+    std::filesystem::remove(out);
+    std::filesystem::remove(err);
+    return run;
+  }
+  std::string path(const std::string& name) const { return temp_.file(name); }
+  std::string allFour() const {
+    return " --gltf " + path("room.glb") + " --obj " + path("room.obj") + " --dxf " + path("room.dxf") + " --csv " +
+           path("room.csv");
+  }
+
+  plumb::test::TempDirectory temp_;
+  std::string project_ = temp_.file("room.plumbproj");
+};
+
+TEST_F(ExportCli, WritesAllFourFormatsAndSaysWhat) {
+  const Outcome run = plumbExport(project_ + allFour());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("3 segments, 3 edges, 2 corners, 2 polygons, 1 prism, 2 groups"), std::string::npos)
+      << run.out;
+  for (const char* name : {"room.glb", "room.obj", "room.dxf", "room.csv"}) {
+    EXPECT_NE(run.out.find("wrote  " + path(name)), std::string::npos) << run.out;
+  }
+  EXPECT_EQ(temp_.entryCount(), 5u) << "the project and the four outputs, no temporary";
+  EXPECT_EQ(plumb::test::readFile(path("room.glb")).substr(0, 4), "glTF");
+  EXPECT_NE(plumb::test::readFile(path("room.obj")).find("\no window_1\n"), std::string::npos);
+  EXPECT_NE(plumb::test::readFile(path("room.dxf")).find("AC1015"), std::string::npos);
+  EXPECT_EQ(plumb::test::readFile(path("room.csv")).rfind("id,name,x,y,z,", 0), 0u);
+}
+
+TEST_F(ExportCli, ACorruptProjectWritesNothing) {
+  const std::string text = plumb::test::readFile(project_);
+  plumb::test::writeFile(project_, text.substr(0, text.size() / 3));
+  const Outcome run = plumbExport(project_ + allFour());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("plumb export: error: '" + project_ + "' at byte "), std::string::npos) << run.err;
+  EXPECT_EQ(temp_.entryCount(), 1u) << "the project only";
+}
+
+TEST_F(ExportCli, AFailingOutputLeavesNoneOfTheOthers) {
+  const Outcome run = plumbExport(project_ + " --gltf " + path("room.glb") + " --obj " + path("room.obj") + " --dxf " +
+                                  path("nowhere/room.dxf") + " --csv " + path("room.csv"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("plumb export: error: '" + path("nowhere/room.dxf") + "'"), std::string::npos) << run.err;
+  EXPECT_EQ(temp_.entryCount(), 1u) << "the project only";
+}
+
+TEST_F(ExportCli, NeedsAnOutputAndKeepsTheProject) {
+  const Outcome none = plumbExport(project_);
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_NE(none.err.find("nothing to export: give at least one of --gltf, --obj, --dxf, --csv"), std::string::npos)
+      << none.err;
+  const Outcome over = plumbExport(project_ + " --obj " + project_);
+  EXPECT_EQ(over.exit_code, 1);
+  EXPECT_NE(over.err.find("--obj would overwrite the project"), std::string::npos) << over.err;
+  const Outcome missing = plumbExport(path("absent.plumbproj") + " --csv " + path("room.csv"));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find(path("absent.plumbproj")), std::string::npos) << missing.err;
+  EXPECT_EQ(temp_.entryCount(), 1u) << "the project only";
+}
+
+}  // namespace

@@ -1,0 +1,68 @@
+#pragma once
+// Running `plumb view` under Xvfb as the ui tests do: on lavapipe with validation on (any message
+// fails the run), replaying a scripted session (ui/viewer/session_script.h) from a temporary file.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/support/temp_directory.h"
+
+namespace plumb::test {
+
+inline nlohmann::json readJson(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+inline Eigen::Vector3d vector3(const nlohmann::json& value) {
+  return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+}
+
+inline nlohmann::json jsonPoint(const Eigen::Vector3d& p) {
+  return nlohmann::json::array({p.x(), p.y(), p.z()});
+}
+
+// What the last session printed (stdout and stderr).
+inline std::string viewerLog(const TempDirectory& dir) {
+  std::ifstream in(dir.file("viewer.log"));
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Runs `plumb view <arguments> --script <steps> --screenshot-dir <dir>/shots --dump-scene
+// <dir>/scene.json` in a `width` x `height` window, its output into <dir>/viewer.log; returns the command's exit status
+// (0: the script ran to its end without a validation message).
+inline int runViewerSession(const TempDirectory& dir, const std::string& arguments, const nlohmann::json& steps,
+                            int width = 1920, int height = 1080) {
+  const std::string script = dir.file("session.json");
+  std::ofstream(script) << steps.dump(1);
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu xvfb-run -a -s '-screen 0 " + size + "x24' '" +
+                              PLUMB_BINARY + "' view " + arguments + " --script '" + script + "' --screenshot-dir '" +
+                              dir.file("shots") + "' --dump-scene '" + dir.file("scene.json") + "' --width " +
+                              std::to_string(width) + " --height " + std::to_string(height) + " > '" +
+                              dir.file("viewer.log") + "' 2>&1";
+  const int status = std::system(command.c_str());
+  if (status != 0) ADD_FAILURE() << command << "\n" << viewerLog(dir);
+  return status;
+}
+
+// PLUMB_TEST_SCREENSHOTS=DIR keeps a session's screenshots there, for a person to look at.
+inline void keepScreenshots(const TempDirectory& dir) {
+  const char* keep = std::getenv("PLUMB_TEST_SCREENSHOTS");
+  const std::filesystem::path shots = dir.file("shots");
+  if (keep == nullptr || !std::filesystem::exists(shots)) return;
+  std::filesystem::create_directories(keep);
+  for (const auto& entry : std::filesystem::directory_iterator(shots)) {
+    std::filesystem::copy_file(entry.path(), std::filesystem::path(keep) / entry.path().filename(),
+                               std::filesystem::copy_options::overwrite_existing);
+  }
+}
+
+}  // namespace plumb::test
