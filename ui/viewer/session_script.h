@@ -8,7 +8,7 @@
 //   {"double_click": [x, y]}
 //   {"click_world": [X, Y, Z]}             a left click where a world point appears now
 //   {"move_world": [X, Y, Z]}              the mouse to where a world point appears now
-//   {"look": {"position": [X, Y, Z], "target": [X, Y, Z]}}   the camera (the viewport stays)
+//   {"look": {"position": [X, Y, Z], "target": [X, Y, Z]}}   the camera, level (the viewport stays)
 //   {"drag": [x0, y0, x1, y1], "button": "left", "steps": 10}
 //   {"wheel": 1.0, "at": [x, y]}           positive zooms in
 //   {"key": "F", "hold_frames": 0}         a key press and release (GLFW key names: A-Z, 0-9,

@@ -325,6 +325,7 @@ int Viewer::run() {
         view::Camera camera = cloud_->navigator->camera();
         camera.position = frame.look->first;
         camera.target = frame.look->second;
+        camera.up = Eigen::Vector3d::UnitZ();  // level, whatever the view before
         cloud_->navigator->setCamera(camera);
       }
       const std::array<std::pair<std::optional<Eigen::Vector3d>, bool>, 2> world_steps{
