@@ -3,6 +3,7 @@
 // fails the run), replaying a scripted session (ui/viewer/session_script.h) from a temporary file.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Core>
 #include <cstdlib>
@@ -29,6 +30,15 @@ inline nlohmann::json jsonPoint(const Eigen::Vector3d& p) {
   return nlohmann::json::array({p.x(), p.y(), p.z()});
 }
 
+// `xvfb-run` on a display of its own: -a searches for a free server number from a number that
+// differs from test to test, not from 99, because an X server that the test before stopped may
+// still hold its display for a moment (seen once in CI: "Failed to open display :99").
+inline std::string xvfbRun(const std::string& screen) {
+  static unsigned calls = 0;
+  const unsigned start = 100 + (static_cast<unsigned>(::getpid()) * 37u + 101u * calls++) % 4000u;
+  return "xvfb-run -a -n " + std::to_string(start) + " -s '-screen 0 " + screen + "'";
+}
+
 // What the last session printed (stdout and stderr).
 inline std::string viewerLog(const TempDirectory& dir) {
   std::ifstream in(dir.file("viewer.log"));
@@ -43,8 +53,8 @@ inline int runViewerSession(const TempDirectory& dir, const std::string& argumen
   const std::string script = dir.file("session.json");
   std::ofstream(script) << steps.dump(1);
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu xvfb-run -a -s '-screen 0 " + size + "x24' '" +
-                              PLUMB_BINARY + "' view " + arguments + " --script '" + script + "' --screenshot-dir '" +
+  const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu " + xvfbRun(size + "x24") + " '" + PLUMB_BINARY +
+                              "' view " + arguments + " --script '" + script + "' --screenshot-dir '" +
                               dir.file("shots") + "' --dump-scene '" + dir.file("scene.json") + "' --width " +
                               std::to_string(width) + " --height " + std::to_string(height) + " > '" +
                               dir.file("viewer.log") + "' 2>&1";

@@ -59,7 +59,7 @@ TEST(Viewer, AClickOnTheDemoWallGrowsItsPlane) {
                                })
                                .dump(2);
   const std::string command = "XDG_CACHE_HOME='" + cache.string() + "' PLUMB_VALIDATION=1 PLUMB_GPU=cpu " +
-                              "xvfb-run -a -s '-screen 0 1600x900x24' '" + PLUMB_BINARY + "' view --script '" +
+                              plumb::test::xvfbRun("1600x900x24") + " '" + PLUMB_BINARY + "' view --script '" +
                               script.string() + "' --screenshot-dir '" + shots.string() + "' --dump-scene '" +
                               scene.string() + "' --width 1280 --height 720";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
@@ -138,7 +138,7 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
                                    {{"wait", "frames"}, {"count", 2}},
                                })
                                .dump(2);
-  const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu xvfb-run -a -s '-screen 0 1600x900x24' '" +
+  const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu " + plumb::test::xvfbRun("1600x900x24") + " '" +
                               std::string(PLUMB_BINARY) + "' view '" + ply.string() + "' --camera '" + camera.string() +
                               "' --script '" + script.string() + "' --dump-scene '" + scene.string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;

@@ -9,6 +9,7 @@
 #include "ui/cli/command.h"
 #include "ui/viewer/demo_scan.h"
 #include "ui/viewer/headless_demo.h"
+#include "ui/viewer/project_session.h"
 #include "ui/viewer/viewer_app.h"
 #include "ui/viewer/window.h"
 
@@ -61,6 +62,8 @@ Command addViewCommand(CLI::App& plumb) {
 
   auto run = [options, camera, headless_out]() -> int {
     if (!camera->empty()) options->camera = view::readCameraJson(*camera);
+    // A project that cannot be opened stops here, display or none, and is left as it is.
+    if (!options->project.empty()) viewer::ProjectSession::open(options->project, options->cloud);
     if (!viewer::WindowSystem::displayAvailable()) {
       if (!options->script.empty()) throw Error("--script needs a display (run it under xvfb-run)");
       const std::string out =

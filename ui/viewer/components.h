@@ -105,17 +105,16 @@ constexpr const char* toolName(Tool tool) {
 struct Direction {
   Eigen::Vector3d vector = Eigen::Vector3d::UnitZ();  // unit
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();   // where it was found, for the arrow
-  const char* source = "";                            // "plane normal", "edge", "corner edge", "base to cursor"
+  const char* source = "";  // a string literal: "plane normal", "edge", "corner edge", "base to cursor"
 };
 
 // The drawing tools' state between clicks (ui/viewer/drawing_tools.h).
 struct DrawingState {
-  // Polygon: the vertices so far, and the segments every snapped vertex lies on (the plane
-  // the polygon will be on, when one remains).
+  // Polygon: the vertices so far, and for each the segments it lies on (nothing for a point of
+  // the cloud or a typed point); the polygon goes on the plane they all share.
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<ecs::Entity> common_segments;
-  bool common_known = false;  // false until a vertex snapped to a feature
-  bool rectangle = false;     // a rectangle from three points instead of a free polygon
+  std::vector<std::optional<std::vector<ecs::Entity>>> vertex_segments;
+  bool rectangle = false;  // a rectangle from three points instead of a free polygon
   // Move/Copy and Extrude: the polygon, and for Move the base point.
   ecs::Entity polygon = ecs::kNullEntity;
   std::optional<Eigen::Vector3d> base;

@@ -89,6 +89,20 @@ double distanceToScreenSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& 
   return (a + t * ab - p).norm();
 }
 
+// The segments every feature-snapped vertex lies on; nothing known while none snapped to a feature.
+std::optional<std::vector<ecs::Entity>> commonSegments(const DrawingState& d) {
+  std::optional<std::vector<ecs::Entity>> common;
+  for (const std::optional<std::vector<ecs::Entity>>& on : d.vertex_segments) {
+    if (!on) continue;
+    if (!common) {
+      common = *on;
+    } else {
+      std::erase_if(*common, [&](ecs::Entity e) { return std::find(on->begin(), on->end(), e) == on->end(); });
+    }
+  }
+  return common;
+}
+
 }  // namespace
 
 ecs::Entity polygonAt(const ecs::Registry& registry, const view::Camera& camera, double x_px, double y_px,
@@ -157,7 +171,22 @@ void DrawingTools::escape() {
 }
 
 void DrawingTools::lockDirection(bool locked) {
-  edit([&](DrawingState& s) { s.direction_locked = locked && s.direction.has_value(); });
+  edit([&](DrawingState& s) {
+    s.direction_locked = locked && s.direction.has_value();
+    if (locked && !s.direction) s.message = "no direction to lock: point at a plane, an edge or a corner first";
+  });
+}
+
+// A polygon the tool picked that an undo or a deletion took away: the tool starts over.
+void DrawingTools::forgetVanishedPolygon() {
+  const DrawingState& s = state();
+  if (s.polygon == ecs::kNullEntity || scene_.registry().has<Polygon>(s.polygon)) return;
+  edit([](DrawingState& d) {
+    d.polygon = ecs::kNullEntity;
+    d.base.reset();
+    d.copied_from = ecs::kNullEntity;
+    d.message = "the polygon is gone (undone or deleted): click a polygon";
+  });
 }
 
 void DrawingTools::type(char character) {
@@ -173,6 +202,7 @@ void DrawingTools::backspace() {
       s.typed.pop_back();
     } else if (!s.vertices.empty()) {
       s.vertices.pop_back();
+      s.vertex_segments.pop_back();
     }
   });
 }
@@ -205,11 +235,12 @@ std::optional<Eigen::Vector3d> DrawingTools::target(const Pointer& pointer) cons
     return constrainToLine(registry, *origin, s.direction->vector, pointer.snap, pointer.ray);
   }
   // A polygon on a plane: between features the pointer's ray meets that plane.
-  if (scene_.tool().active == Tool::kPolygon && s.common_known && s.common_segments.size() == 1) {
+  const std::optional<std::vector<ecs::Entity>> common = commonSegments(s);
+  if (scene_.tool().active == Tool::kPolygon && common && common->size() == 1) {
     const bool feature =
         pointer.snap && pointer.snap->kind != Snap::Kind::kPoint && pointer.snap->kind != Snap::Kind::kPlane;
     if (!feature) {
-      if (const Segment* segment = registry.tryGet<Segment>(s.common_segments.front())) {
+      if (const Segment* segment = registry.tryGet<Segment>(common->front())) {
         if (std::optional<Eigen::Vector3d> hit = rayOnPlane(pointer.ray, segment->plane)) return hit;
       }
     }
@@ -268,6 +299,7 @@ void DrawingTools::updateDirection(const Pointer& pointer, const view::Camera& c
 }
 
 void DrawingTools::hover(const Pointer& pointer, const view::Camera& camera) {
+  forgetVanishedPolygon();
   updateDirection(pointer, camera);
   const std::optional<Eigen::Vector3d> preview = state().typed.empty() ? target(pointer) : typedTarget(pointer);
   std::optional<Eigen::Vector3d> extrusion;
@@ -286,6 +318,7 @@ void DrawingTools::hover(const Pointer& pointer, const view::Camera& camera) {
 // --- clicks --------------------------------------------------------------------------------------
 
 void DrawingTools::click(const Pointer& pointer, const view::Camera& camera) {
+  forgetVanishedPolygon();
   updateDirection(pointer, camera);
   const Tool tool = scene_.tool().active;
   const DrawingState& s = state();
@@ -300,7 +333,7 @@ void DrawingTools::click(const Pointer& pointer, const view::Camera& camera) {
   }
   switch (tool) {
     case Tool::kPolygon:
-      polygonPoint(*point, pointer, camera);
+      polygonPoint(*point, pointer, camera, false);
       break;
     case Tool::kMove:
       moveTo(*point);
@@ -314,6 +347,7 @@ void DrawingTools::click(const Pointer& pointer, const view::Camera& camera) {
 }
 
 void DrawingTools::enter(const Pointer& pointer, const view::Camera& camera) {
+  forgetVanishedPolygon();
   const Tool tool = scene_.tool().active;
   const std::string& typed = state().typed;
   if (tool == Tool::kMove && !typed.empty() && (typed[0] == '/' || typed[0] == 'x' || typed[0] == '*')) {
@@ -323,16 +357,28 @@ void DrawingTools::enter(const Pointer& pointer, const view::Camera& camera) {
   if (!state().typed.empty()) {
     const std::optional<Eigen::Vector3d> point = typedTarget(pointer);
     edit([](DrawingState& s) { s.typed.clear(); });
-    if (!point) {
-      edit([](DrawingState& s) { s.message = "type a distance in metres, then Enter"; });
+    if (!constraintOrigin()) {
+      edit([](DrawingState& s) {
+        s.message = "a distance runs from a point: click the first vertex, the base point or the polygon first";
+      });
       return;
     }
-    if (tool == Tool::kPolygon) polygonPoint(*point, pointer, camera);
+    if (!point) {
+      edit([](DrawingState& s) { s.message = "type a distance in metres (or after a copy /N, xN), then Enter"; });
+      return;
+    }
+    if (tool == Tool::kPolygon) polygonPoint(*point, pointer, camera, true);
     if (tool == Tool::kMove && state().base) moveTo(*point);
     if (tool == Tool::kExtrude && state().polygon != ecs::kNullEntity) extrudeTo(*point);
     return;
   }
-  if (tool == Tool::kPolygon && state().vertices.size() >= 3) closePolygon();
+  if (tool == Tool::kPolygon) {
+    if (state().vertices.size() >= 3) {
+      closePolygon();
+    } else {
+      edit([](DrawingState& s) { s.message = "a polygon needs three vertices before Enter closes it"; });
+    }
+  }
 }
 
 void DrawingTools::pickPolygon(const Pointer& pointer, const view::Camera& camera) {
@@ -351,30 +397,25 @@ void DrawingTools::pickPolygon(const Pointer& pointer, const view::Camera& camer
   updateDirection(pointer, camera);
 }
 
-void DrawingTools::polygonPoint(const Eigen::Vector3d& point, const Pointer& pointer, const view::Camera& camera) {
+void DrawingTools::polygonPoint(const Eigen::Vector3d& point, const Pointer& pointer, const view::Camera& camera,
+                                bool typed) {
   const DrawingState& s = state();
-  // Clicking the first vertex closes the polygon.
-  if (!s.rectangle && s.vertices.size() >= 3) {
+  // Clicking the first vertex closes the polygon (a typed point never does).
+  if (!typed && !s.rectangle && s.vertices.size() >= 3) {
     if (const std::optional<Eigen::Vector2d> first = view::pixelOf(camera, s.vertices.front());
         first && (*first - pointer.pixel).norm() <= kCloseRadiusPx) {
       closePolygon();
       return;
     }
   }
-  // The segments every feature-snapped vertex so far lies on.
-  const std::vector<ecs::Entity> on =
-      pointer.snap ? segmentsOf(scene_.registry(), *pointer.snap) : std::vector<ecs::Entity>{};
+  // The segments the vertex lies on: those of the feature it snapped to (a typed point, or one
+  // constrained to a locked direction, lies on none that is known).
+  std::optional<std::vector<ecs::Entity>> on;
   const bool feature = pointer.snap && pointer.snap->kind != Snap::Kind::kPoint;
+  if (feature && !typed && !s.direction_locked) on = segmentsOf(scene_.registry(), *pointer.snap);
   edit([&](DrawingState& d) {
     d.vertices.push_back(point);
-    if (feature) {
-      if (!d.common_known) {
-        d.common_segments = on;
-        d.common_known = true;
-      } else {
-        std::erase_if(d.common_segments, [&](ecs::Entity e) { return std::find(on.begin(), on.end(), e) == on.end(); });
-      }
-    }
+    d.vertex_segments.push_back(on);
     d.message = d.rectangle ? (d.vertices.size() == 1 ? "click the other end of the first side"
                                                       : "click a point of the opposite side")
                             : (d.vertices.size() < 3 ? "click the next vertex"
@@ -389,7 +430,7 @@ void DrawingTools::closePolygon() {
   // The plane: the common segment the vertices lie nearest to.
   ecs::Entity plane = ecs::kNullEntity;
   double plane_error = kOnPlaneTolerance_m;
-  for (const ecs::Entity segment_entity : s.common_segments) {
+  for (const ecs::Entity segment_entity : commonSegments(s).value_or(std::vector<ecs::Entity>{})) {
     const Segment* segment = registry.tryGet<Segment>(segment_entity);
     if (!segment || !segment->plane.valid) continue;
     double worst = 0.0;
@@ -403,6 +444,19 @@ void DrawingTools::closePolygon() {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   if (const Segment* segment = registry.tryGet<Segment>(plane)) normal = segment->plane.normal;
   if (s.rectangle && ring.size() == 3) ring = rectangleOf(ring[0], ring[1], ring[2], normal);
+  // A ring that is no polygon at all (repeated or collinear points) before any plane is fitted;
+  // a failed rectangle takes back its third point, so another can be clicked.
+  if (const std::optional<std::string> problem =
+          cad::findPolygonProblem(ring, std::numeric_limits<double>::infinity())) {
+    edit([&](DrawingState& d) {
+      d.message = "not closed: " + *problem;
+      if (d.rectangle && !d.vertices.empty()) {
+        d.vertices.pop_back();
+        d.vertex_segments.pop_back();
+      }
+    });
+    return;
+  }
   // Onto the plane: the segment's, or for a free polygon the plane of its vertices.
   Eigen::Vector3d on = plane != ecs::kNullEntity ? registry.get<Segment>(plane).plane.centroid : centroidOf(ring);
   if (plane == ecs::kNullEntity && ring.size() >= 3) {
@@ -434,8 +488,7 @@ void DrawingTools::closePolygon() {
   const ecs::Entity polygon = scene_.addPolygon(std::move(ring), plane);
   edit([&](DrawingState& d) {
     d.vertices.clear();
-    d.common_segments.clear();
-    d.common_known = false;
+    d.vertex_segments.clear();
     d.message = scene_.registry().get<Polygon>(polygon).name + (plane != ecs::kNullEntity ? " on a plane" : " (free)");
   });
 }
@@ -450,7 +503,10 @@ void DrawingTools::moveTo(const Eigen::Vector3d& point) {
     return;
   }
   const Eigen::Vector3d offset = point - *s.base;
-  if (offset.norm() < 1e-9) return;
+  if (offset.norm() < 1e-9) {
+    edit([](DrawingState& d) { d.message = "that is the base point itself: click where it goes"; });
+    return;
+  }
   if (s.copy) {
     // The copy becomes the polygon the next click moves on from: a step, then the next.
     const ecs::Entity original = s.polygon;
@@ -482,7 +538,7 @@ void DrawingTools::copyArray() {
   int n = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
   const bool divide = s.typed[0] == '/';
-  if (error != std::errc() || end != text.data() + text.size() || n < 2 || n > 1000 ||
+  if (error != std::errc() || end != text.data() + text.size() || n < 2 || n > 1000 || !s.copy ||
       !scene_.registry().has<Polygon>(s.copied_from)) {
     edit([](DrawingState& d) {
       d.typed.clear();
@@ -502,7 +558,8 @@ void DrawingTools::copyArray() {
     d.typed.clear();
     d.message = std::to_string(copies.size()) + (divide ? " copies between" : " more copies");
     if (!divide && !copies.empty() && d.base) {
-      d.polygon = copies.back();
+      // Continued from the last: another xN goes on from there, not over these.
+      d.polygon = d.copied_from = copies.back();
       *d.base += static_cast<double>(n - 1) * offset;
     }
   });
@@ -525,7 +582,8 @@ std::optional<Eigen::Vector3d> DrawingTools::extrusionTo(const Eigen::Vector3d& 
   const double along = normal.dot(*direction);
   if (std::abs(along) < 0.1) return std::nullopt;  // the direction lies nearly in the polygon's plane
   const double t = normal.dot(target - polygon->vertices.front()) / along;
-  if (std::abs(t) < 1e-6) return std::nullopt;
+  // Thinner than a tenth of a millimetre is no prism (and the project file refuses it).
+  if (std::abs(t * along) < 1e-4) return std::nullopt;
   return t * *direction;
 }
 

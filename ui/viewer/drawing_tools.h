@@ -43,6 +43,8 @@ struct Pointer {
   Eigen::Vector2d motion_px = Eigen::Vector2d::Zero();
 };
 
+// On the main thread only (the ECS's); `scene` must outlive the tools. Calls while the active tool
+// is not Polygon, Move/Copy or Extrude change nothing but the direction.
 class DrawingTools {
  public:
   explicit DrawingTools(SceneState& scene) : scene_(scene) {}
@@ -75,7 +77,8 @@ class DrawingTools {
   std::optional<Eigen::Vector3d> extrusionDirection() const;
   std::optional<Eigen::Vector3d> extrusionTo(const Eigen::Vector3d& target) const;
   void updateDirection(const Pointer& pointer, const view::Camera& camera);
-  void polygonPoint(const Eigen::Vector3d& point, const Pointer& pointer, const view::Camera& camera);
+  void polygonPoint(const Eigen::Vector3d& point, const Pointer& pointer, const view::Camera& camera, bool typed);
+  void forgetVanishedPolygon();
   void closePolygon();
   void moveTo(const Eigen::Vector3d& point);
   void copyArray();

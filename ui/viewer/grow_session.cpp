@@ -10,6 +10,7 @@ GrowSession::GrowSession(jobs::JobSystem& jobs, lod::NodeCache& cache, std::func
 GrowSession::~GrowSession() {
   cancel();
   job_.wait();
+  *alive_ = false;  // continuations the job posted find the session gone
 }
 
 void GrowSession::cancel() {
@@ -38,7 +39,11 @@ std::uint64_t GrowSession::start(const reco::GrowParameters& parameters, reco::G
                             post = !mailbox->pending.has_value();
                             mailbox->pending = GrowUpdate{grow, parameters, snapshot, final, first_ms};
                           }
-                          if (post) jobs_.post([this, mailbox] { deliver(mailbox); });
+                          if (post) {
+                            jobs_.post([this, mailbox, alive = alive_] {
+                              if (*alive) deliver(mailbox);
+                            });
+                          }
                         };
                         reco::GrowSnapshot result =
                             reco::growRegions(cache_, parameters, options, [&](const reco::GrowSnapshot& snapshot) {

@@ -58,6 +58,9 @@ class GrowSession {
   std::function<void(const GrowUpdate&)> on_update_;
   jobs::JobHandle job_;
   std::shared_ptr<std::atomic<bool>> cancel_;  // the running grow's
+  // False once this session is gone: a job's last continuation may still be queued then (the
+  // viewer replaces the session when an import's whole cloud follows its preview). Main thread.
+  std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
   std::uint64_t current_ = 0;
   bool busy_ = false;
 };

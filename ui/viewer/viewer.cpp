@@ -83,13 +83,20 @@ Viewer::Viewer(const ViewerOptions& options)
 }
 
 Viewer::~Viewer() {
+  // Unsaved changes into the autosave, however the session ended (an error out of run too).
+  try {
+    autosaveProject(true);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "plumb view: the autosave failed: %s\n", error.what());
+  }
   if (cloud_ && cloud_->grow) cloud_->grow->cancel();
   jobs_.waitIdle();  // an import or a grow still running finishes (or sees its cancellation) first
-  // An import that finished after the window closed: its octree was never opened.
-  const bool opened = cloud_ && cloud_->temporary == load_progress_->temporary;
-  if (!opened && !load_progress_->temporary.empty()) {
+  // The octrees an import made that the viewer never opened (it closed first): not left behind.
+  // The one it shows goes with it.
+  for (const std::string& temporary : load_progress_->temporaries) {
+    if (cloud_ && cloud_->temporary == temporary) continue;
     std::error_code ignored;
-    std::filesystem::remove(load_progress_->temporary, ignored);
+    std::filesystem::remove(temporary, ignored);
   }
   cloud_.reset();
   vkDeviceWaitIdle(device_.handle());
@@ -121,7 +128,8 @@ void Viewer::openProject() {
 cad::Project Viewer::currentProject() const {
   const std::string cloud = options_.cloud.empty() ? "" : std::filesystem::absolute(options_.cloud).string();
   std::optional<view::Camera> camera;
-  if (cloud_) camera = cloud_->navigator->camera();
+  camera = cloud_ ? std::optional(cloud_->navigator->camera()) : options_.camera;
+  if (camera && view::findCameraProblem(*camera)) camera.reset();  // a project without a view beats none saved
   return projectOf(scene_.registry(), cloud, camera);
 }
 
@@ -154,11 +162,24 @@ void Viewer::autosaveProject(bool now) {
 void Viewer::exportProject() {
   std::filesystem::path stem = project_.path();
   if (stem.extension() == ".plumbproj") stem.replace_extension();
+  const cad::ExportTargets targets{.gltf = stem.string() + ".glb",
+                                   .obj = stem.string() + ".obj",
+                                   .dxf = stem.string() + ".dxf",
+                                   .csv = stem.string() + "-corners.csv"};
+  // Never over the cloud itself (a scan may be an OBJ or a CSV) or the project.
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code error;
+    return !b.empty() && std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
+  };
+  for (const std::string& target : {targets.gltf, targets.obj, targets.dxf, targets.csv}) {
+    if (same(target, options_.cloud) || same(target, project_.path())) {
+      project_message_ = "not exported: " + target + " is the cloud or the project itself";
+      std::printf("plumb view: %s\n", project_message_.c_str());
+      return;
+    }
+  }
   try {
-    const std::vector<std::string> written = cad::exportAll(currentProject(), {.gltf = stem.string() + ".glb",
-                                                                               .obj = stem.string() + ".obj",
-                                                                               .dxf = stem.string() + ".dxf",
-                                                                               .csv = stem.string() + ".csv"});
+    const std::vector<std::string> written = cad::exportAll(currentProject(), targets);
     project_message_ = "exported " + std::to_string(written.size()) + " files to " + stem.string() + ".*";
   } catch (const std::exception& error) {
     project_message_ = error.what();
@@ -196,7 +217,7 @@ void Viewer::startLoading() {
         const auto build = [&](const std::string& output, std::uint64_t stride, const std::string& what) {
           {
             const std::scoped_lock lock(progress->mutex);
-            progress->temporary = output;
+            progress->temporaries.push_back(output);
           }
           lod::BuildOptions options;
           options.sources = lod::fileSources({cloud});
@@ -238,6 +259,7 @@ void Viewer::startLoading() {
     } catch (const std::exception& error) {
       const std::scoped_lock lock(progress->mutex);
       progress->error = error.what();
+      progress->finished = true;  // nothing more will come: a preview shown stays
     }
   });
 }
@@ -375,7 +397,6 @@ int Viewer::run() {
     imgui_.endFrame();
     render(screenshot.has_value(), screenshot.value_or(""));
   }
-  autosaveProject(true);
   if (!options_.dump_scene.empty()) {
     AtomicFile file(options_.dump_scene);
     const std::string json = scene_.toJson();
@@ -490,7 +511,7 @@ void Viewer::handleViewEvent(const InputEvent& event) {
     if (control && event.key == GLFW_KEY_Y) return redo();
     if (control && event.key == GLFW_KEY_S) return saveProject();
     if (control && event.key == GLFW_KEY_G) {
-      scene_.groupSelected();
+      groupSelected();
       return;
     }
     if (event.key == GLFW_KEY_DELETE) return deleteSelected();
@@ -579,6 +600,13 @@ void Viewer::cornerOfSelected() {
   const std::string message = std::holds_alternative<std::string>(made)
                                   ? "no corner: " + std::get<std::string>(made)
                                   : scene_.registry().get<Corner>(std::get<ecs::Entity>(made)).name;
+  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.message = message; });
+}
+
+void Viewer::groupSelected() {
+  const ecs::Entity group = scene_.groupSelected();
+  const std::string message = group == ecs::kNullEntity ? "nothing selected to group"
+                                                        : "grouped as " + scene_.registry().get<Group>(group).name;
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.message = message; });
 }
 

@@ -55,8 +55,8 @@ struct LoadProgress {
   std::string phase = "starting";
   double fraction = 0.0;
   std::optional<std::string> error;
-  std::string temporary;  // an import's octree, removed by the viewer if it closes before opening it
-  bool finished = false;  // the whole cloud is open (a preview may have shown before)
+  std::vector<std::string> temporaries;  // an import's octrees (a preview, the whole), removed by the viewer
+  bool finished = false;                 // the whole cloud is open (a preview may have shown before)
 };
 
 // The grow tool's panel values: the user's settings and what the last click derived.
@@ -86,6 +86,7 @@ class Viewer {
   Pointer pointerAt(double x_px, double y_px, bool pick_point);
   void selectAt(double x_px, double y_px);
   void cornerOfSelected();
+  void groupSelected();
   void startGrow(const Eigen::Vector3d& picked);
   std::optional<reco::GrowParameters> clickParameters(const Eigen::Vector3d& picked) const;
   void setTool(Tool tool);

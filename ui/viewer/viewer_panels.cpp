@@ -110,7 +110,7 @@ void Viewer::drawToolsPanel() {
   if (ImGui::Button("Corner of 3")) cornerOfSelected();
   tooltip("A corner where the three selected segments meet, even with no points near it (K)");
   ImGui::SameLine();
-  if (ImGui::Button("Group")) scene_.groupSelected();
+  if (ImGui::Button("Group")) groupSelected();
   tooltip("Put the selected items in a new group (Ctrl+G)");
   ImGui::SameLine();
   if (ImGui::Button("Ungroup")) scene_.ungroupSelected();

@@ -128,6 +128,39 @@ TEST_F(DrawingToolsTest, AFreePolygonOffItsPlaneIsRefusedWithTheVertexNamed) {
   EXPECT_NE(drawing().message.find("off the plane"), std::string::npos) << drawing().message;
 }
 
+TEST_F(DrawingToolsTest, APickedPolygonThatAnUndoTakesAwayIsForgotten) {
+  drawFloorSquare();
+  use(Tool::kMove);
+  clickAt({0.5, 0.5, 0.0});
+  clickAt({1.2, 1.2, 0.0});
+  ASSERT_TRUE(drawing().base);
+  scene_.history().undo();  // the polygon's creation
+  ASSERT_TRUE(polygons().empty());
+  hoverAt({1.5, 1.5, 0.0});  // the tool notices before it would move a polygon that is gone
+  EXPECT_EQ(drawing().polygon, ecs::kNullEntity);
+  EXPECT_FALSE(drawing().base);
+  EXPECT_NE(drawing().message.find("gone"), std::string::npos) << drawing().message;
+  clickAt({1.5, 1.5, 0.0});  // and a click asks for a polygon again
+  EXPECT_EQ(drawing().message, "click a polygon");
+}
+
+TEST_F(DrawingToolsTest, BackspaceTakesAVertexAndItsPlaneBack) {
+  use(Tool::kPolygon);
+  clickAt({0, 0, 0});        // the corner: the walls and the floor
+  clickAt({1.2, 0.3, 0.0});  // the floor: the polygon would go on it
+  tools_.backspace();
+  tools_.backspace();
+  EXPECT_TRUE(drawing().vertices.empty());
+  // A point of the cloud above the floor is now taken as it is, not where the ray meets the floor.
+  const Eigen::Vector3d above(3.0, 3.0, 0.5);
+  Pointer pointer = pointerAt(above);
+  pointer.snap = Snap{Snap::Kind::kPoint, above, ecs::kNullEntity, 0.0};
+  tools_.click(pointer, room_.camera);
+  tools_.hover(pointer, room_.camera);
+  ASSERT_EQ(drawing().vertices.size(), 1u);
+  EXPECT_NEAR((drawing().vertices[0] - above).norm(), 0.0, 1e-12);
+}
+
 TEST_F(DrawingToolsTest, AtACornerTheDirectionFollowsThePointersMovement) {
   const Eigen::Vector3d corner = Eigen::Vector3d::Zero();
   const Snap snap{Snap::Kind::kCorner, corner, room_.corner, 0.0};
