@@ -5,18 +5,11 @@
 #include <limits>
 #include <vector>
 
+#include "cad/polygon_mesh.h"
 #include "engine/ecs/registry.h"
 
 namespace plumb::viewer {
 namespace {
-
-// The Newell normal of a ring (unit; zero for a degenerate ring).
-Eigen::Vector3d ringNormal(const std::vector<Eigen::Vector3d>& ring) {
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < ring.size(); ++i) normal += ring[i].cross(ring[(i + 1) % ring.size()]);
-  const double length = normal.norm();
-  return length > 0.0 ? Eigen::Vector3d(normal / length) : Eigen::Vector3d::Zero();
-}
 
 // Of `candidates` (unit vectors at `anchor`), the one whose image on screen the movement follows
 // most closely, signed along the movement.
@@ -99,8 +92,7 @@ std::optional<Direction> findDirection(const ecs::Registry& registry, const view
         const Eigen::Vector3d side = ring[other] - ring[nearest];
         if (side.norm() > 1e-9) candidates.push_back(side.normalized());
       }
-      const Eigen::Vector3d normal = ringNormal(ring);
-      if (!normal.isZero(0.0)) candidates.push_back(normal);
+      candidates.push_back(cad::polygonNormal(ring));  // a drawn polygon's ring is valid
       if (!polygon->extrusion.isZero(0.0)) candidates.push_back(polygon->extrusion.normalized());
       source = "polygon side";
       break;

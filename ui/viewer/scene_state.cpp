@@ -132,6 +132,15 @@ std::size_t SceneState::deleteSelected() {
 
 // --- edits ------------------------------------------------------------------------------------
 
+// Moves `polygon` by `offset`; moved off its plane, it is free.
+void SceneState::translate(Polygon& polygon, const Eigen::Vector3d& offset) const {
+  for (Eigen::Vector3d& vertex : polygon.vertices) vertex += offset;
+  if (const Segment* segment = registry_.tryGet<Segment>(polygon.plane);
+      segment && std::abs(segment->plane.normal.dot(offset)) > 1e-9) {
+    polygon.plane = ecs::kNullEntity;
+  }
+}
+
 ecs::Entity SceneState::addPolygon(std::vector<Eigen::Vector3d> ring, ecs::Entity plane) {
   ecs::EditScope edit(history_, "Polygon");
   const ecs::Entity entity = registry_.create();
@@ -142,14 +151,7 @@ ecs::Entity SceneState::addPolygon(std::vector<Eigen::Vector3d> ring, ecs::Entit
 
 void SceneState::movePolygon(ecs::Entity polygon, const Eigen::Vector3d& offset) {
   ecs::EditScope edit(history_, "Move polygon");
-  registry_.patch<Polygon>(polygon, [&](Polygon& p) {
-    for (Eigen::Vector3d& vertex : p.vertices) vertex += offset;
-    // Moved off its plane, a polygon is free.
-    if (const Segment* segment = registry_.tryGet<Segment>(p.plane);
-        segment && std::abs(segment->plane.normal.dot(offset)) > 1e-9) {
-      p.plane = ecs::kNullEntity;
-    }
-  });
+  registry_.patch<Polygon>(polygon, [&](Polygon& p) { translate(p, offset); });
 }
 
 ecs::Entity SceneState::copyPolygon(ecs::Entity polygon, const Eigen::Vector3d& offset) {
@@ -167,11 +169,7 @@ std::vector<ecs::Entity> SceneState::copyPolygons(ecs::Entity polygon, const std
 // A copy of `polygon` moved by `offset`, in its group; within an open edit.
 ecs::Entity SceneState::addCopy(ecs::Entity polygon, const Eigen::Vector3d& offset) {
   Polygon copy = registry_.get<Polygon>(polygon);
-  for (Eigen::Vector3d& vertex : copy.vertices) vertex += offset;
-  if (const Segment* segment = registry_.tryGet<Segment>(copy.plane);
-      segment && std::abs(segment->plane.normal.dot(offset)) > 1e-9) {
-    copy.plane = ecs::kNullEntity;
-  }
+  translate(copy, offset);
   copy.name = "Polygon " + std::to_string(++polygons_named_);
   const ecs::Entity entity = registry_.create();
   registry_.emplace(entity, std::move(copy));

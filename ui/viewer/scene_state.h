@@ -84,6 +84,7 @@ class SceneState {
  private:
   void destroyAll(std::vector<ecs::Entity>& entities);
   ecs::Entity addCopy(ecs::Entity polygon, const Eigen::Vector3d& offset);
+  void translate(Polygon& polygon, const Eigen::Vector3d& offset) const;
 
   ecs::Registry registry_;
   ecs::History history_;
