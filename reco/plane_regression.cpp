@@ -6,7 +6,7 @@
 //   2. rebase: appendix A, d = old reference - new reference.
 //   3. merge:  rebase the other regression's sums onto this reference, then add the sums.
 //   4. covariance (equation 3) from the sums; translation-invariant, so relative sums suffice.
-//   5. fit:    eigen decomposition; normal = eigenvector of the smallest eigenvalue.
+//   5. fit:    eigen decomposition (synthesizePlane); normal = eigenvector of the smallest eigenvalue.
 //
 // Appendix A prints the cross-term update with its components in the order (xy, xz, yz) while
 // D is defined as (yz, xz, xy); the code follows the definition of D.
@@ -15,6 +15,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -109,10 +110,13 @@ Eigen::Matrix3d PlaneRegression::covariance() const {
 
 Plane PlaneRegression::fit() const {
   if (count_ < 3) return {};
-  const Eigen::Matrix3d cov = covariance();
-  if (!cov.allFinite()) return {};
+  return synthesizePlane(centroid(), covariance(), count_);
+}
 
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+Plane synthesizePlane(const Eigen::Vector3d& centroid, const Eigen::Matrix3d& covariance, std::uint64_t count) {
+  if (count < 3 || !covariance.allFinite() || !centroid.allFinite()) return {};
+
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   if (solver.info() != Eigen::Success) return {};
   // Eigen sorts ascending; the paper numbers them descending.
   const Eigen::Vector3d& values = solver.eigenvalues();
@@ -129,10 +133,10 @@ Plane PlaneRegression::fit() const {
   plane.normal = solver.eigenvectors().col(0).normalized();
   plane.tangent = solver.eigenvectors().col(2).normalized();
   plane.bitangent = plane.normal.cross(plane.tangent);
-  plane.centroid = centroid();
+  plane.centroid = centroid;
   plane.offset = -plane.normal.dot(plane.centroid);
-  plane.point_count = count_;
-  const double c = static_cast<double>(count_);
+  plane.point_count = count;
+  const double c = static_cast<double>(count);
   plane.rms = std::sqrt(plane.lambda2 * (c - 1.0) / c);
   return plane;
 }

@@ -63,4 +63,10 @@ class PlaneRegression {
   std::uint64_t count_ = 0;
 };
 
+// Plane synthesis (section 3.3) from a centroid and a sample covariance (divided by count - 1):
+// the normal is the eigenvector of the smallest eigenvalue. Never NaN: fewer than 3 points, or
+// points on a line, give a Plane with valid == false. PlaneRegression::fit and the weighted fit
+// (robust_plane_fit.h) both end here.
+Plane synthesizePlane(const Eigen::Vector3d& centroid, const Eigen::Matrix3d& covariance, std::uint64_t count);
+
 }  // namespace plumb::reco

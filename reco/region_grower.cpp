@@ -21,8 +21,10 @@
 //      the last two redrawn as the segments grow by a quarter.
 //   6. Stop when the queue is empty (converged) or the cancel flag is set (checked per cell).
 //   7. Settle (converged grows): points near where segments meet move to the nearest plane
-//      among the segments around them, and the planes are refitted; the final result has
-//      everything drawn anew.
+//      among the segments around them, and the planes are refitted.
+//   8. Refine (converged grows): each plane's final fit is a robust M-estimate over the points
+//      around its segment (robust_plane_fit.h), which may take in points the growth turned away
+//      and give up others; the final result has everything drawn anew.
 
 #include "reco/region_grower.h"
 
@@ -39,6 +41,7 @@
 #include "reco/cell_claims.h"
 #include "reco/point_grid.h"
 #include "reco/point_spacing.h"
+#include "reco/robust_plane_fit.h"
 #include "reco/seed_planes.h"
 
 namespace plumb::reco {
@@ -61,6 +64,7 @@ class Membership {
   void assign(const lod::PointRef& ref, std::uint32_t segment) {
     node(ref.node)[ref.index] = static_cast<std::uint8_t>(segment + 1);
   }
+  void release(const lod::PointRef& ref) { node(ref.node)[ref.index] = 0; }
   std::vector<std::vector<lod::PointRef>> members(std::size_t segments) const {
     std::vector<std::vector<lod::PointRef>> result(segments);
     for (const auto& [node, flags] : nodes_) {
@@ -108,6 +112,12 @@ struct CellState {
   // asks it for every candidate. Claims are disjoint, so while this cell exists its points join
   // only through it.
   std::vector<std::uint8_t> assigned;
+  // For a point that no segment took: the plane epoch of its last test, and the segments it was
+  // tested against then (bit s). A test repeated from another border point of one of those
+  // segments, before any plane has changed, would give the same answer, and is skipped: at full
+  // detail each rejected point has a dozen neighbours that reach it.
+  std::vector<std::uint32_t> rejected_epoch;
+  std::vector<std::uint32_t> rejected_by;
   std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> by_grid;
   std::vector<Assigned> frontier;  // assigned points within r of this cell, not yet expanded here
 };
@@ -115,6 +125,7 @@ struct CellState {
 struct Candidate {
   int segment = -1;             // the segment the point joins, -1 for none
   double nearest_m = INFINITY;  // distance to the nearest assigned point (any segment)
+  std::uint32_t tested = 0;     // bit s: segment s has a point within r, and its plane was tested
 };
 
 class Grower {
@@ -173,6 +184,8 @@ class Grower {
         state.points.push_back(position);
         state.refs.push_back(p.ref);
         state.assigned.push_back(membership_.assigned(p.ref) ? 1 : 0);
+        state.rejected_epoch.push_back(kNeverTested);
+        state.rejected_by.push_back(0);
       }
     }
     return state;
@@ -405,7 +418,7 @@ class Grower {
     }
     SeedOptions seed_options;
     seed_options.threshold = parameters_.plane_threshold_m;
-    seed_options.max_planes = options_.max_planes;
+    seed_options.max_planes = std::min(options_.max_planes, kMaxSegments);
     seed_options.drop_unstable = options_.drop_unstable;
     seed_options.seed = options_.random_seed;
     const std::vector<SeedPlane> planes = findSeedPlanes(points, seed_options);
@@ -462,6 +475,7 @@ class Grower {
         ++snapshot_.points_tested;
         const Plane& plane = planes_[a.segment];
         if (!plane.valid) continue;
+        best.tested |= 1u << a.segment;
         const double d = plane.distance(p);
         if (d < thresholds_[a.segment] && d < best_distance) {
           best_distance = d;
@@ -502,10 +516,18 @@ class Grower {
           if (state.assigned[i]) continue;
           const double distance = (state.points[i] - from.position).norm();
           if (distance > radius_) continue;
+          if (state.rejected_epoch[i] == plane_epoch_ && ((state.rejected_by[i] >> from.segment) & 1u)) {
+            ++snapshot_.tests_skipped;
+            continue;
+          }
           // One added point in four is measured: enough for a running mean of the spacing.
           const bool measure = (neighbour_distance_count_ & 3u) == 0;
           const Candidate candidate = bestSegment(state.points[i], measure);
-          if (candidate.segment < 0) continue;
+          if (candidate.segment < 0) {
+            state.rejected_epoch[i] = plane_epoch_;
+            state.rejected_by[i] = candidate.tested;
+            continue;
+          }
           assign(state, i, static_cast<std::uint32_t>(candidate.segment));
           queue.push_back({state.points[i], static_cast<std::uint32_t>(candidate.segment)});
           neighbour_distance_sum_ += distance;
@@ -527,6 +549,7 @@ class Grower {
   }
 
   void refit(std::uint32_t segment) {
+    ++plane_epoch_;
     planes_[segment] = regressions_[segment].fit();
     fitted_count_[segment] = regressions_[segment].count();
     updateThreshold(segment);
@@ -639,11 +662,150 @@ class Grower {
     }
     segment_points_ = std::move(points);
     segment_refs_ = std::move(refs);
-    // assigned_ keeps the segments of before: settling is the grow's last step, nothing reads it.
+    rebuildAssigned();
+  }
+
+  // The neighbour grid of the segments' points anew, after they changed hands.
+  void rebuildAssigned() {
+    assigned_.clear();
+    for (std::uint32_t s = 0; s < segment_points_.size(); ++s) {
+      for (const Eigen::Vector3d& p : segment_points_[s]) {
+        AssignedCell& cell = assigned_[grid_.keyOf(p)];
+        cell.segments |= 1u << s;
+        cell.points.push_back({p, s});
+      }
+    }
+  }
+
+  // The segments with a point within r of p, as a bit mask.
+  std::uint32_t segmentsNear(const Eigen::Vector3d& p) const {
+    std::uint32_t mask = 0;
+    grid_.forEachAround(p, [&](const GridKey& key) {
+      const auto it = assigned_.find(key);
+      if (it == assigned_.end() || (it->second.segments & ~mask) == 0) return;
+      for (const Assigned& a : it->second.points) {
+        if (!((mask >> a.segment) & 1u) && (a.position - p).squaredNorm() <= radius_ * radius_) mask |= 1u << a.segment;
+      }
+    });
+    return mask;
+  }
+
+  // The segments that surround p: those whose points within r of it lie around it on their plane,
+  // not to one side (their mean, projected on the plane, is within kInsideOffset r of p), as bit
+  // mask. A point the growth turned away inside a segment is a tail of its noise; one beside
+  // the segment's border is as likely the strip of a surface that meets it there, the ceiling
+  // along a wall's top, all on one side of the plane.
+  std::uint32_t segmentsAround(const Eigen::Vector3d& p) const {
+    std::array<Eigen::Vector3d, kMaxSegments> sum;
+    sum.fill(Eigen::Vector3d::Zero());
+    std::array<std::uint32_t, kMaxSegments> count{};
+    std::uint32_t near = 0;
+    grid_.forEachAround(p, [&](const GridKey& key) {
+      const auto it = assigned_.find(key);
+      if (it == assigned_.end()) return;
+      for (const Assigned& a : it->second.points) {
+        if ((a.position - p).squaredNorm() > radius_ * radius_) continue;
+        near |= 1u << a.segment;
+        sum[a.segment] += a.position - p;
+        ++count[a.segment];
+      }
+    });
+    std::uint32_t inside = 0;
+    for (std::uint32_t s = 0; s < regressions_.size(); ++s) {
+      if (!((near >> s) & 1u) || count[s] < kMinAroundPoints || !planes_[s].valid) continue;
+      const Eigen::Vector3d mean = sum[s] / static_cast<double>(count[s]);
+      const Eigen::Vector3d along = mean - planes_[s].normal.dot(mean) * planes_[s].normal;
+      if (along.norm() < kInsideOffset * radius_) inside |= 1u << s;
+    }
+    return inside;
+  }
+
+  // The robust final fit (robust_plane_fit.h). The pool: the segments' points, each with the
+  // segments near it, and the unassigned points of the processed cells inside a segment
+  // (segmentsAround). Each
+  // round gives every pool point to the nearest plane, among the near segments', whose window
+  // (refine_c times that segment's robust scale) holds it, weighs it by the biweight and refits
+  // the planes; the scales follow the points each segment holds. The segments' points become those
+  // of positive weight: a point may join that the growth turned away, or leave.
+  void refine() {
+    const std::size_t n = regressions_.size();
+    struct PoolPoint {
+      Eigen::Vector3d position;
+      lod::PointRef ref;
+      std::uint32_t near;  // bit s: segment s has a point within r
+    };
+    std::vector<PoolPoint> pool;
+    std::vector<double> scales(n, 0.0);
+    for (std::uint32_t s = 0; s < n; ++s) {
+      std::vector<double> residuals;
+      for (std::size_t i = 0; i < segment_points_[s].size(); ++i) {
+        const Eigen::Vector3d& p = segment_points_[s][i];
+        pool.push_back({p, segment_refs_[s][i], segmentsNear(p) | (1u << s)});
+        if (planes_[s].valid) residuals.push_back(planes_[s].distance(p));
+      }
+      scales[s] = robustScale(std::move(residuals));
+    }
+    for (const auto& [key, state] : cells_) {
+      if (!state.processed) continue;
+      for (std::uint32_t i = 0; i < state.points.size(); ++i) {
+        if (state.assigned[i]) continue;
+        const std::uint32_t inside = segmentsAround(state.points[i]);
+        if (inside != 0) pool.push_back({state.points[i], state.refs[i], inside});
+      }
+    }
+
+    std::vector<std::int8_t> owner(pool.size(), -1);
+    std::vector<double> weights(pool.size(), 0.0);
+    for (std::uint32_t round = 0; round < options_.refine_rounds; ++round) {
+      std::vector<std::vector<double>> residuals(n);
+      for (std::size_t i = 0; i < pool.size(); ++i) {
+        owner[i] = -1;
+        weights[i] = 0.0;
+        double best = INFINITY;
+        for (std::uint32_t s = 0; s < n; ++s) {
+          if (!((pool[i].near >> s) & 1u) || !planes_[s].valid) continue;
+          const double d = planes_[s].distance(pool[i].position);
+          const double window = options_.refine_c * scales[s];
+          if (d < window && d < best) {
+            best = d;
+            owner[i] = static_cast<std::int8_t>(s);
+            weights[i] = biweight(d, window);
+          }
+        }
+        if (owner[i] >= 0) residuals[static_cast<std::size_t>(owner[i])].push_back(best);
+      }
+      std::vector<std::vector<Eigen::Vector3d>> points(n);
+      std::vector<std::vector<double>> point_weights(n);
+      for (std::size_t i = 0; i < pool.size(); ++i) {
+        if (owner[i] < 0) continue;
+        points[static_cast<std::size_t>(owner[i])].push_back(pool[i].position);
+        point_weights[static_cast<std::size_t>(owner[i])].push_back(weights[i]);
+      }
+      for (std::uint32_t s = 0; s < n; ++s) {
+        const Plane fitted = fitWeightedPlane(points[s], point_weights[s]);
+        if (!fitted.valid) continue;  // too few points left: the settled plane stays
+        planes_[s] = fitted;
+        scales[s] = robustScale(std::move(residuals[s]));
+      }
+    }
+
+    for (auto& list : segment_points_) list.clear();
+    for (auto& list : segment_refs_) list.clear();
+    for (std::size_t i = 0; i < pool.size(); ++i) {
+      if (owner[i] < 0 || !(weights[i] > 0.0)) {
+        membership_.release(pool[i].ref);
+        continue;
+      }
+      const auto s = static_cast<std::uint32_t>(owner[i]);
+      membership_.assign(pool[i].ref, s);
+      segment_points_[s].push_back(pool[i].position);
+      segment_refs_[s].push_back(pool[i].ref);
+    }
   }
 
   GrowSnapshot finish(bool converged) {
     if (converged && options_.settle) settle();
+    if (converged && options_.refine_c > 0.0) refine();
     snapshot_.converged = converged;
     fillSnapshot(true);
     if (options_.collect_members) {
@@ -654,6 +816,13 @@ class Grower {
   }
 
   static constexpr std::uint64_t kMinFrontSamples = 16;
+  static constexpr std::uint32_t kNeverTested = ~std::uint32_t{0};
+  static constexpr std::size_t kMaxSegments = 32;  // segment masks are 32 bits wide
+  // segmentsAround: a point on a segment's border has the segment's points to one side, their
+  // mean 4 / (3 pi) = 0.42 r from it (a half disc); inside, a dozen points' mean strays about
+  // 0.18 r. 0.3 r keeps nine in ten inside and a fifth of those on the border.
+  static constexpr double kInsideOffset = 0.3;
+  static constexpr std::uint32_t kMinAroundPoints = 4;
 
   lod::NodeCache& cache_;
   const lod::Octree& octree_;
@@ -684,6 +853,7 @@ class Grower {
   std::unordered_set<CellKey, lod::CellKeyHash> queued_;
   std::optional<CellKey> processing_;  // the cell whose breadth-first search is running
   std::optional<lod::Box3> processing_box_;
+  std::uint32_t plane_epoch_ = 0;  // counts the refits: a rejected point's test holds until the next
   double neighbour_distance_sum_ = 0.0;
   std::uint64_t neighbour_distance_count_ = 0;
   double front_spacing_ = 0.0;

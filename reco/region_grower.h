@@ -24,7 +24,7 @@
 namespace plumb::reco {
 
 struct GrowOptions {
-  std::size_t max_planes = 3;  // seed planes (section 3.4)
+  std::size_t max_planes = 3;  // seed planes (section 3.4), at most 32
   bool drop_unstable = true;   // Otsu on the seed planes' support
   std::uint64_t random_seed = 1;
   // Adaptive resolution (section 3.6). The observed density is (spacing / s_obs)^2, an areal
@@ -45,6 +45,11 @@ struct GrowOptions {
   // After convergence, move each point to the nearest plane among the segments around it and
   // refit (the growth gives a point to whichever segment reaches it first).
   bool settle = true;
+  // Then refit each plane robustly (robust_plane_fit.h): Tukey's biweight over a window of
+  // refine_c robust standard deviations of its residuals, refine_rounds times, over its points
+  // and the unassigned ones around them. 0 keeps the least-squares fit of the grown points.
+  double refine_c = 3.5;
+  std::uint32_t refine_rounds = 4;
   // Fill SegmentSnapshot::members in the final result (the octree points of each segment).
   bool collect_members = false;
   // Cancels the grow between two cells when it becomes true (a newer click, say). May be null.
@@ -83,6 +88,7 @@ struct GrowSnapshot {
   double front_spacing_m = 0;          // s_obs: the running nearest-neighbour spacing of the growth front
   std::uint64_t cells_visited = 0;     // cell visits (a cell is visited again when a neighbour grows to it)
   std::uint64_t points_tested = 0;     // candidate point-to-plane tests
+  std::uint64_t tests_skipped = 0;     // tests of a rejected point repeated before any plane changed
   double mean_neighbour_distance = 0;  // d_avg: mean distance from an added point to the point that reached it
   double elapsed_ms = 0;
   bool converged = false;  // no cell adds anything any more

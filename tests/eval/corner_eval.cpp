@@ -6,6 +6,7 @@
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
 //                      [--details low,medium,high,full] [--jobs N] [--stations N]
 //                      [--grow-limit-s S] [--tp-sigmas K] [--noise-sigmas N] [--full-repetitions N]
+//                      [--refine-c C]
 //
 // For each noise level and repetition (the scanner's seed is the repetition, so reruns agree):
 //   1. simulate the room from both its stations at a UTM-like offset (as scripts/run does) into
@@ -301,6 +302,7 @@ struct Settings {
   // which cuts off most of a 20 or 30 mm noise's points and stops the grow early.
   double tp_sigmas = 3.0;
   double noise_sigmas = reco::GrowOptions{}.noise_sigmas;
+  double refine_c = reco::GrowOptions{}.refine_c;
 };
 
 std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std::uint32_t repetition) {
@@ -361,6 +363,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
       reco::GrowOptions options;
       options.random_seed = repetition;
       options.noise_sigmas = settings.noise_sigmas;
+      options.refine_c = settings.refine_c;
       // A grow that runs away would hold up the whole evaluation: cancelled past the limit, it
       // counts as lost and as timed out. The grower looks at the flag between cells.
       std::atomic<bool> cancel{false};
@@ -624,6 +627,10 @@ int main(int argc, char** argv) {
                  "Run full detail on the first N repetitions only (default: all)");
   app.add_option("--noise-sigmas", settings.noise_sigmas,
                  "Inlier threshold at most this many times the plane's RMS (0: t_p alone)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--refine-c", settings.refine_c,
+                 "The final robust fit's window in robust standard deviations (0: the least-squares fit)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);

@@ -40,8 +40,9 @@ std::shared_ptr<const lod::Octree> buildGenerated(const test::TempDirectory& dir
 }
 
 // Whether a segment holds its patch's points: all but the noise tail beyond the inlier threshold
-// (noise_sigmas x the RMS of the patches' Gaussian noise turns away 2.4 % at 2.25), give or take
-// 3 % at the borders, and never more than 3 % over (which would be creeping onto a neighbour).
+// (noise_sigmas x the RMS of the patches' Gaussian noise turns away 2.4 % at 2.25, before the
+// robust final fit takes most of them back), give or take 3 % at the borders, and never more than
+// 3 % over (which would be creeping onto a neighbour).
 ::testing::AssertionResult holdsPatch(std::uint64_t segment_points, std::uint64_t patch_points) {
   const double tail = std::erfc(GrowOptions{}.noise_sigmas / std::sqrt(2.0));
   const double share = static_cast<double>(segment_points) / static_cast<double>(patch_points);
@@ -51,12 +52,12 @@ std::shared_ptr<const lod::Octree> buildGenerated(const test::TempDirectory& dir
 }
 
 std::shared_ptr<const lod::Octree> buildPatches(const test::TempDirectory& dir, const std::vector<Patch>& patches,
-                                                std::uint64_t count) {
-  return buildGenerated(dir, "patches.plumb", count, [patches](std::uint64_t i) {
+                                                std::uint64_t count, double noise_m = 0.001) {
+  return buildGenerated(dir, "patches.plumb", count, [patches, noise_m](std::uint64_t i) {
     const Patch& patch = patches[i % patches.size()];
     const Eigen::Vector3d normal = patch.u.cross(patch.v).normalized();
     const double noise =
-        0.001 * std::sqrt(-2.0 * std::log(1.0 - test::unitHash(i, 3))) * std::cos(2.0 * M_PI * test::unitHash(i, 4));
+        noise_m * std::sqrt(-2.0 * std::log(1.0 - test::unitHash(i, 3))) * std::cos(2.0 * M_PI * test::unitHash(i, 4));
     const Eigen::Vector3d p =
         patch.origin + test::unitHash(i, 1) * patch.u + test::unitHash(i, 2) * patch.v + noise * normal;
     return test::withId(p.x(), p.y(), p.z(), i % patches.size());
@@ -179,6 +180,54 @@ TEST(RegionGrower, TheTwoFacesOfAThickWallStayApart) {
   EXPECT_NEAR(single.segments[0].plane.signedDistance(kUtm), 0.0, 0.0005);
   const std::uint64_t face = pointsOfPatchAtLevel(cache, single.level, 0);
   EXPECT_TRUE(holdsPatch(single.segments[0].points, face));
+}
+
+//   +------------------+
+//   |  wall, 4 x 2.5 m |   4 mm noise along its normal: the growth's threshold, about 2 sigma,
+//   |       seed       |   turns away the noise's tails (5 %); the robust final fit
+//   +------------------+   (robust_plane_fit.h) takes them back, and its plane is the truth's.
+TEST(RegionGrower, TheRobustFinalFitTakesBackTheNoiseTails) {
+  test::TempDirectory dir;
+  const std::vector<Patch> patches{{kUtm, {4, 0, 0}, {0, 0, 2.5}}};
+  const auto octree = buildPatches(dir, patches, 60'000, 0.004);
+  lod::NodeCache cache(octree, 256 << 20);
+  const GrowParameters parameters =
+      parametersForDensity(kUtm + Eigen::Vector3d(2.0, 0.0, 1.2), 1.0 / std::pow(0.03, 3), 0.4);
+  GrowOptions grown_only;
+  grown_only.refine_c = 0.0;
+  const GrowSnapshot grown = growRegions(cache, parameters, grown_only);
+  const GrowSnapshot refined = growRegions(cache, parameters);
+  ASSERT_EQ(grown.segments.size(), 1u);
+  ASSERT_EQ(refined.segments.size(), 1u);
+  const double wall = static_cast<double>(pointsOfPatchAtLevel(cache, refined.level, 0));
+  const double grown_share = static_cast<double>(grown.segments[0].points) / wall;
+  const double refined_share = static_cast<double>(refined.segments[0].points) / wall;
+  std::printf("grown: %.2f %% of the wall's points, refined: %.2f %%\n", 100.0 * grown_share, 100.0 * refined_share);
+  EXPECT_LT(grown_share, 0.97);
+  EXPECT_GT(refined_share, 0.995);  // the biweight's window at 3.5 sigma leaves out 0.05 %
+  EXPECT_LE(refined_share, 1.0);
+  // The plane at the wall's four corners: within 0.3 mm of the least-squares plane of all the
+  // wall's points at the grow's level. Not of the truth: at level 1 the octree's sample of this
+  // wall is itself tilted, 1 mm off the truth at x = 0 (an open question, docs/evaluation.md),
+  // and its noise there is not quite Gaussian, so the biweight and least squares differ by 0.2 mm.
+  PlaneRegression all_points;
+  for (const lod::NodeInfo& node : cache.octree().nodes()) {
+    if (node.key.level > refined.level) continue;
+    const auto points = cache.get(node.key);
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const std::array<double, 3> p = points->position(i);
+      all_points.add({p[0], p[1], p[2]});
+    }
+  }
+  const Plane limit = all_points.fit();
+  const Plane& plane = refined.segments[0].plane;
+  for (const Eigen::Vector3d& corner :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 0, 0), Eigen::Vector3d(0, 0, 2.5), Eigen::Vector3d(4, 0, 2.5)}) {
+    const Eigen::Vector3d on_limit = kUtm + corner - limit.signedDistance(kUtm + corner) * limit.normal;
+    EXPECT_LT(plane.distance(on_limit), 0.0003);
+  }
+  // Rejected points are tested again only after a plane has changed.
+  EXPECT_GT(refined.tests_skipped, 0u);
 }
 
 //   +---------------------+

@@ -44,25 +44,19 @@ double differingPixels(const plumb::io::RgbaImage& a, const plumb::io::RgbaImage
 TEST(Viewer, AClickOnTheDemoWallGrowsItsPlane) {
   const plumb::test::TempDirectory dir;
   const fs::path cache = dir.file("cache"), shots = dir.file("shots");
-  const fs::path script = dir.file("session.json"), scene = dir.file("scene.json");
-  std::ofstream(script) << json::array(
-                               {
-                                   {{"wait", "streaming_idle"}, {"timeout_s", 300}},
-                                   {{"screenshot", "1-demo.png"}},
-                                   {{"click_world", json::array({kWallPoint.x(), kWallPoint.y(), kWallPoint.z()})}},
-                                   {{"wait", "grower_idle"}, {"timeout_s", 300}},
-                                   {{"wait", "frames"}, {"count", 2}},
-                                   {{"screenshot", "2-grown.png"}},
-                                   {{"key", "1"}},
-                                   {{"wait", "streaming_idle"}, {"timeout_s", 300}},
-                                   {{"screenshot", "3-top.png"}},
-                               })
-                               .dump(2);
-  const std::string command = "XDG_CACHE_HOME='" + cache.string() + "' PLUMB_VALIDATION=1 PLUMB_GPU=cpu " +
-                              plumb::test::xvfbRun("1600x900x24") + " '" + PLUMB_BINARY + "' view --script '" +
-                              script.string() + "' --screenshot-dir '" + shots.string() + "' --dump-scene '" +
-                              scene.string() + "' --width 1280 --height 720";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const fs::path scene = dir.file("scene.json");
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"screenshot", "1-demo.png"}},
+      {{"click_world", json::array({kWallPoint.x(), kWallPoint.y(), kWallPoint.z()})}},
+      {{"wait", "grower_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 2}},
+      {{"screenshot", "2-grown.png"}},
+      {{"key", "1"}},
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"screenshot", "3-top.png"}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, "", steps, 1280, 720, "XDG_CACHE_HOME='" + cache.string() + "'"), 0);
 
   // The segment on the wall.
   const json dump = readJson(scene);
@@ -118,30 +112,25 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
       std::string("'") + PLUMB_BINARY + "' simulate --scene room --points 300000 --noise-mm 2 " +
       "--offset 512000,5403000,250 -o '" + ply.string() + "' --truth '" + truth_path.string() + "' >/dev/null";
   ASSERT_EQ(std::system(simulate.c_str()), 0);
-  const fs::path camera = dir.file("camera.json"), script = dir.file("session.json"), scene = dir.file("scene.json");
+  const fs::path camera = dir.file("camera.json"), scene = dir.file("scene.json");
   std::ofstream(camera) << R"({"format": "plumb-camera", "version": 1, "position": [512003.5, 5403002.5, 251.5],
                             "target": [512007.0, 5403005.0, 252.2], "fov_deg": 70, "viewport": [1280, 720]})";
   const Eigen::Vector3d corner(512007.0, 5403005.0, 252.5);
   const Eigen::Vector3d on_ceiling = corner + Eigen::Vector3d(-0.25, -0.25, 0.0);
   const Eigen::Vector3d on_wall = corner + Eigen::Vector3d(-2.0, 0.0, -1.0);  // the y+ wall, beside the window
-  std::ofstream(script) << json::array(
-                               {
-                                   {{"wait", "streaming_idle"}, {"timeout_s", 300}},
-                                   {{"click_world", json::array({on_ceiling.x(), on_ceiling.y(), on_ceiling.z()})}},
-                                   {{"wait", "grower_idle"}, {"timeout_s", 300}},
-                                   {{"wait", "frames"}, {"count", 2}},
-                                   // Measure from the corner the planes make to the wall, snapped.
-                                   {{"tool", "measure"}},
-                                   {{"click_world", json::array({corner.x(), corner.y(), corner.z()})}},
-                                   {{"wait", "frames"}, {"count", 2}},
-                                   {{"click_world", json::array({on_wall.x(), on_wall.y(), on_wall.z()})}},
-                                   {{"wait", "frames"}, {"count", 2}},
-                               })
-                               .dump(2);
-  const std::string command = "PLUMB_VALIDATION=1 PLUMB_GPU=cpu " + plumb::test::xvfbRun("1600x900x24") + " '" +
-                              std::string(PLUMB_BINARY) + "' view '" + ply.string() + "' --camera '" + camera.string() +
-                              "' --script '" + script.string() + "' --dump-scene '" + scene.string() + "'";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"click_world", json::array({on_ceiling.x(), on_ceiling.y(), on_ceiling.z()})}},
+      {{"wait", "grower_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 2}},
+      // Measure from the corner the planes make to the wall, snapped.
+      {{"tool", "measure"}},
+      {{"click_world", json::array({corner.x(), corner.y(), corner.z()})}},
+      {{"wait", "frames"}, {"count", 2}},
+      {{"click_world", json::array({on_wall.x(), on_wall.y(), on_wall.z()})}},
+      {{"wait", "frames"}, {"count", 2}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, "'" + ply.string() + "' --camera '" + camera.string() + "'", steps), 0);
   const json dump = readJson(scene);
   ASSERT_GE(dump.at("segments").size(), 3u);
   double nearest_m = INFINITY;
