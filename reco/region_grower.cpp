@@ -721,8 +721,8 @@ class Grower {
   }
 
   // The robust final fit (robust_plane_fit.h). The pool: the segments' points, each with the
-  // segments near it, and the unassigned points of the processed cells inside a segment
-  // (segmentsAround). Each
+  // segments near it, and the points of the processed cells that the growth tested and turned
+  // away, where they lie inside a segment (segmentsAround). Each
   // round gives every pool point to the nearest plane, among the near segments', whose window
   // (refine_c times that segment's robust scale) holds it, weighs it by the biweight and refits
   // the planes; the scales follow the points each segment holds. The segments' points become those
@@ -748,7 +748,8 @@ class Grower {
     for (const auto& [key, state] : cells_) {
       if (!state.processed) continue;
       for (std::uint32_t i = 0; i < state.points.size(); ++i) {
-        if (state.assigned[i]) continue;
+        // A point never tested was never within r of a segment's point: not around any segment.
+        if (state.assigned[i] || state.rejected_epoch[i] == kNeverTested) continue;
         const std::uint32_t inside = segmentsAround(state.points[i]);
         if (inside != 0) pool.push_back({state.points[i], state.refs[i], inside});
       }

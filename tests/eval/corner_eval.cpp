@@ -6,7 +6,7 @@
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
 //                      [--details low,medium,high,full] [--jobs N] [--stations N]
 //                      [--grow-limit-s S] [--tp-sigmas K] [--noise-sigmas N] [--full-repetitions N]
-//                      [--refine-c C]
+//                      [--refine-c C] [--print-segments]
 //
 // For each noise level and repetition (the scanner's seed is the repetition, so reruns agree):
 //   1. simulate the room from both its stations at a UTM-like offset (as scripts/run does) into
@@ -303,7 +303,34 @@ struct Settings {
   double tp_sigmas = 3.0;
   double noise_sigmas = reco::GrowOptions{}.noise_sigmas;
   double refine_c = reco::GrowOptions{}.refine_c;
+  bool print_segments = false;
 };
+
+// One line per segment of a grow (--print-segments): its points, and against the limit plane of
+// the corner's three whose normal is nearest its own, the angle between them and how far the
+// segment's plane passes from the limit corner. Shows which plane of a bad corner is off.
+void printSegments(double noise_mm, std::uint32_t repetition, const TruthCorner& corner, const std::string& detail,
+                   const reco::GrowSnapshot& result, const std::array<reco::Plane, 3>& limits,
+                   const Eigen::Vector3d& limit_corner) {
+  static std::mutex output;
+  const std::lock_guard lock(output);
+  for (std::size_t s = 0; s < result.segments.size(); ++s) {
+    const reco::Plane& plane = result.segments[s].plane;
+    if (!plane.valid) continue;
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < 3; ++i) {
+      if (std::abs(limits[i].normal.dot(plane.normal)) > std::abs(limits[best].normal.dot(plane.normal))) best = i;
+    }
+    const double angle_mrad = std::acos(std::min(1.0, std::abs(limits[best].normal.dot(plane.normal)))) * 1e3;
+    std::fprintf(stderr,
+                 "segments: noise %g mm, scan %u, corner %u, %s: segment %zu, %llu points (limit plane %zu: %llu), "
+                 "%.3f mrad, %.3f mm from the limit corner\n",
+                 noise_mm, repetition, corner.id, detail.c_str(), s,
+                 static_cast<unsigned long long>(result.segments[s].points), best,
+                 static_cast<unsigned long long>(limits[best].point_count), angle_mrad,
+                 plane.distance(limit_corner) * 1e3);
+  }
+}
 
 std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std::uint32_t repetition) {
   char name[96];
@@ -373,6 +400,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
         if (s.elapsed_ms > limit_ms) cancel = true;
       });
 
+      if (settings.print_segments) printSegments(noise_mm, repetition, corner, detail, result, fitted, *limit_corner);
       double nearest = std::numeric_limits<double>::infinity();
       for (const reco::Corner& found : result.corners)
         nearest = std::min(nearest, (found.position - corner.position).norm());
@@ -633,6 +661,8 @@ int main(int argc, char** argv) {
                  "The final robust fit's window in robust standard deviations (0: the least-squares fit)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  app.add_flag("--print-segments", settings.print_segments,
+               "Print each grow's segments against the limit planes (to standard error)");
   CLI11_PARSE(app, argc, argv);
   try {
     return run(settings);

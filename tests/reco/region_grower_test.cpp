@@ -208,8 +208,9 @@ TEST(RegionGrower, TheRobustFinalFitTakesBackTheNoiseTails) {
   EXPECT_LE(refined_share, 1.0);
   // The plane at the wall's four corners: within 0.3 mm of the least-squares plane of all the
   // wall's points at the grow's level. Not of the truth: at level 1 the octree's sample of this
-  // wall is itself tilted, 1 mm off the truth at x = 0 (an open question, docs/evaluation.md),
-  // and its noise there is not quite Gaussian, so the biweight and least squares differ by 0.2 mm.
+  // wall is itself tilted, 1 mm off the truth at x = 0, where two level-1 leaves keep all their
+  // points beside thinned nodes (docs/evaluation.md), and its noise there is not quite Gaussian,
+  // so the biweight and least squares differ by 0.2 mm.
   PlaneRegression all_points;
   for (const lod::NodeInfo& node : cache.octree().nodes()) {
     if (node.key.level > refined.level) continue;

@@ -87,7 +87,8 @@ void writeGrowJson(const GrowReport& report, const std::string& path) {
                              {{"first_progress_ms", report.first_progress_ms},
                               {"converged_ms", result.elapsed_ms},
                               {"cells_visited", result.cells_visited},
-                              {"points_tested", result.points_tested}}}};
+                              {"points_tested", result.points_tested},
+                              {"tests_skipped", result.tests_skipped}}}};
   const std::string text = root.dump(1) + "\n";
   AtomicFile file(path);
   file.write(text.data(), text.size());
