@@ -341,6 +341,13 @@ class Grower {
 
   // --- growing (section 3.5) ------------------------------------------------------------------
 
+  // Enters a segment's point in the neighbour grid.
+  void addToGrid(const Eigen::Vector3d& p, std::uint32_t segment) {
+    AssignedCell& cell = assigned_[grid_.keyOf(p)];
+    cell.segments |= 1u << segment;
+    cell.points.push_back({p, segment});
+  }
+
   // Records point i of a cell as joining `segment`.
   void assign(CellState& state, std::uint32_t index, std::uint32_t segment) {
     membership_.assign(state.refs[index], segment);
@@ -349,9 +356,7 @@ class Grower {
     regressions_[segment].add(p);
     segment_points_[segment].push_back(p);
     segment_refs_[segment].push_back(state.refs[index]);
-    AssignedCell& cell = assigned_[grid_.keyOf(p)];
-    cell.segments |= 1u << segment;
-    cell.points.push_back({p, segment});
+    addToGrid(p, segment);
     grown_[segment] = true;
     // The plane follows the regression as it grows (the paper tests each point against the
     // current regression): refit whenever the support has grown by a tenth, so a seed plane
@@ -630,15 +635,7 @@ class Grower {
         const Eigen::Vector3d& p = segment_points_[s][i];
         std::uint32_t best = s;
         double best_distance = planes_[s].valid ? planes_[s].distance(p) : INFINITY;
-        std::uint32_t near_mask = 0;
-        grid_.forEachAround(p, [&](const GridKey& key) {
-          const auto it = assigned_.find(key);
-          if (it == assigned_.end() || (it->second.segments & ~(near_mask | (1u << s))) == 0) return;
-          for (const Assigned& a : it->second.points) {
-            if (a.segment == s || ((near_mask >> a.segment) & 1u)) continue;
-            if ((a.position - p).squaredNorm() <= radius_ * radius_) near_mask |= 1u << a.segment;
-          }
-        });
+        const std::uint32_t near_mask = segmentsNear(p, 1u << s);
         for (std::uint32_t t = 0; t < n; ++t) {
           if (!((near_mask >> t) & 1u) || !planes_[t].valid) continue;
           const double d = planes_[t].distance(p);
@@ -669,17 +666,14 @@ class Grower {
   void rebuildAssigned() {
     assigned_.clear();
     for (std::uint32_t s = 0; s < segment_points_.size(); ++s) {
-      for (const Eigen::Vector3d& p : segment_points_[s]) {
-        AssignedCell& cell = assigned_[grid_.keyOf(p)];
-        cell.segments |= 1u << s;
-        cell.points.push_back({p, s});
-      }
+      for (const Eigen::Vector3d& p : segment_points_[s]) addToGrid(p, s);
     }
   }
 
-  // The segments with a point within r of p, as a bit mask.
-  std::uint32_t segmentsNear(const Eigen::Vector3d& p) const {
-    std::uint32_t mask = 0;
+  // The segments with a point within r of p, as a bit mask, taking those of `known` as near
+  // without looking (p's own segment, whose points fill the cells around it).
+  std::uint32_t segmentsNear(const Eigen::Vector3d& p, std::uint32_t known) const {
+    std::uint32_t mask = known;
     grid_.forEachAround(p, [&](const GridKey& key) {
       const auto it = assigned_.find(key);
       if (it == assigned_.end() || (it->second.segments & ~mask) == 0) return;
@@ -732,7 +726,7 @@ class Grower {
     struct PoolPoint {
       Eigen::Vector3d position;
       lod::PointRef ref;
-      std::uint32_t near;  // bit s: segment s has a point within r
+      std::uint32_t near;  // bit s: the point may go to segment s (near it, or inside it)
     };
     std::vector<PoolPoint> pool;
     std::vector<double> scales(n, 0.0);
@@ -740,7 +734,7 @@ class Grower {
       std::vector<double> residuals;
       for (std::size_t i = 0; i < segment_points_[s].size(); ++i) {
         const Eigen::Vector3d& p = segment_points_[s][i];
-        pool.push_back({p, segment_refs_[s][i], segmentsNear(p) | (1u << s)});
+        pool.push_back({p, segment_refs_[s][i], segmentsNear(p, 1u << s)});
         if (planes_[s].valid) residuals.push_back(planes_[s].distance(p));
       }
       scales[s] = robustScale(std::move(residuals));
