@@ -27,11 +27,20 @@ void PlaneSampleModel::selectInliers(const PlaneHypothesis& plane, double thresh
   }
 }
 
-std::size_t PlaneSampleModel::countInliers(const PlaneHypothesis& plane, double threshold,
-                                           std::span<const std::uint32_t> candidates) const {
-  std::size_t count = 0;
-  for (std::uint32_t i : candidates) count += plane.distance(points_[i]) <= threshold ? 1u : 0u;
-  return count;
+PlaneSampleModel::Support PlaneSampleModel::support(const PlaneHypothesis& plane, double threshold,
+                                                    std::span<const std::uint32_t> candidates) const {
+  Support result;
+  const double threshold2 = threshold * threshold;
+  for (std::uint32_t i : candidates) {
+    const double d = plane.distance(points_[i]);
+    if (d <= threshold) {
+      ++result.inliers;
+      result.cost += d * d;
+    } else {
+      result.cost += threshold2;
+    }
+  }
+  return result;
 }
 
 Plane PlaneSampleModel::refit(std::span<const std::uint32_t> inliers) const {

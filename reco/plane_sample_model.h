@@ -41,8 +41,13 @@ class PlaneSampleModel {
   // The candidates within `threshold` of the plane, appended to `inliers` (cleared first).
   void selectInliers(const PlaneHypothesis& plane, double threshold, std::span<const std::uint32_t> candidates,
                      std::vector<std::uint32_t>& inliers) const;
-  std::size_t countInliers(const PlaneHypothesis& plane, double threshold,
-                           std::span<const std::uint32_t> candidates) const;
+  // How well the plane explains the candidates: its inliers, and the MSAC cost (Torr and
+  // Zisserman 2000), the sum over all candidates of min(d^2, threshold^2).
+  struct Support {
+    std::size_t inliers = 0;
+    double cost = 0.0;
+  };
+  Support support(const PlaneHypothesis& plane, double threshold, std::span<const std::uint32_t> candidates) const;
 
   // The least-squares plane of `inliers` (section 3.2 regression; invalid for degenerate sets).
   Plane refit(std::span<const std::uint32_t> inliers) const;

@@ -1,7 +1,7 @@
 // RANSAC for one plane.
 //
 //   1. Draw three distinct candidates; skip degenerate (collinear) samples.
-//   2. Count the candidates within the threshold of their plane; keep the best hypothesis.
+//   2. Score the hypothesis on the candidates (RansacScore); keep the best.
 //   3. Stop after N = log(1 - confidence) / log(1 - w^3) iterations, w the best inlier ratio so
 //      far (at most max_iterations).
 //   4. Refit the best hypothesis's inliers by least squares and select the inliers of the refit
@@ -31,6 +31,7 @@ std::optional<RansacResult> ransacPlane(const PlaneSampleModel& model, std::span
 
   std::optional<PlaneHypothesis> best;
   std::size_t best_count = 0;
+  double best_cost = INFINITY;
   std::uint32_t iterations = 0;
   std::uint32_t needed = options.max_iterations;
   while (iterations < needed) {
@@ -44,11 +45,16 @@ std::optional<RansacResult> ransacPlane(const PlaneSampleModel& model, std::span
 
     const auto hypothesis = model.fromSample(sample);
     if (!hypothesis) continue;
-    const std::size_t count = model.countInliers(*hypothesis, options.threshold, candidates);
-    if (count > best_count) {
-      best_count = count;
+    const PlaneSampleModel::Support support = model.support(*hypothesis, options.threshold, candidates);
+    const bool better =
+        options.score == RansacScore::kInlierCount ? support.inliers > best_count : support.cost < best_cost;
+    if (better) {
+      best_count = support.inliers;
+      best_cost = support.cost;
       best = hypothesis;
-      needed = iterationsNeeded(static_cast<double>(count) / static_cast<double>(n), options.confidence,
+      // The stopping rule reads the inlier ratio of the best hypothesis (under MSAC, not always
+      // the largest seen: a slightly conservative estimate of w).
+      needed = iterationsNeeded(static_cast<double>(support.inliers) / static_cast<double>(n), options.confidence,
                                 options.max_iterations);
     }
   }

@@ -8,7 +8,8 @@
 //      of levels 0..L in it (lod::pointsInCell). Its frontier is the assigned points within r
 //      of it; breadth-first from the frontier, an unassigned point within r of an assigned one
 //      joins the segment with the nearest plane among those within t_p whose points are within r
-//      of it (a point joins at most one segment). New points extend the frontier, also into the
+//      of it (a point joins at most one segment), where the surface around it continues the
+//      segment's (continuesSurface). New points extend the frontier, also into the
 //      neighbouring cells they are within r of, which are claimed and queued (again).
 //   4. Adaptive resolution, as a cell leaves the queue: where the observed density is below
 //      refine_below x d and the octree has finer points, the cell is replaced by its children.
@@ -61,6 +62,8 @@ class Membership {
  public:
   explicit Membership(const lod::Octree& octree) : octree_(octree) {}
   bool assigned(const lod::PointRef& ref) { return node(ref.node)[ref.index] != 0; }
+  // 0 for none, s + 1 for segment s.
+  std::uint8_t flag(const lod::PointRef& ref) { return node(ref.node)[ref.index]; }
   void assign(const lod::PointRef& ref, std::uint32_t segment) {
     node(ref.node)[ref.index] = static_cast<std::uint8_t>(segment + 1);
   }
@@ -108,9 +111,9 @@ struct CellState {
   bool processed = false;
   std::vector<Eigen::Vector3d> points;
   std::vector<lod::PointRef> refs;
-  // Whether each point has joined a segment: Membership's answer, kept here because the growth
-  // asks it for every candidate. Claims are disjoint, so while this cell exists its points join
-  // only through it.
+  // Which segment each point has joined (0 for none, s + 1 for segment s): Membership's answer,
+  // kept here because the growth asks it for every candidate. Claims are disjoint, so while this cell exists its points
+  // join only through it.
   std::vector<std::uint8_t> assigned;
   // For a point that no segment took: the plane epoch of its last test, and the segments it was
   // tested against then (bit s). A test repeated from another border point of one of those
@@ -183,7 +186,7 @@ class Grower {
         state.by_grid[grid_.keyOf(position)].push_back(static_cast<std::uint32_t>(state.points.size()));
         state.points.push_back(position);
         state.refs.push_back(p.ref);
-        state.assigned.push_back(membership_.assigned(p.ref) ? 1 : 0);
+        state.assigned.push_back(membership_.flag(p.ref));
         state.rejected_epoch.push_back(kNeverTested);
         state.rejected_by.push_back(0);
       }
@@ -351,7 +354,7 @@ class Grower {
   // Records point i of a cell as joining `segment`.
   void assign(CellState& state, std::uint32_t index, std::uint32_t segment) {
     membership_.assign(state.refs[index], segment);
-    state.assigned[index] = 1;
+    state.assigned[index] = static_cast<std::uint8_t>(segment + 1);
     const Eigen::Vector3d& p = state.points[index];
     regressions_[segment].add(p);
     segment_points_[segment].push_back(p);
@@ -527,7 +530,11 @@ class Grower {
           }
           // One added point in four is measured: enough for a running mean of the spacing.
           const bool measure = (neighbour_distance_count_ & 3u) == 0;
-          const Candidate candidate = bestSegment(state.points[i], measure);
+          Candidate candidate = bestSegment(state.points[i], measure);
+          if (candidate.segment >= 0 &&
+              !continuesSurface(state, state.points[i], static_cast<std::uint32_t>(candidate.segment))) {
+            candidate.segment = -1;
+          }
           if (candidate.segment < 0) {
             state.rejected_epoch[i] = plane_epoch_;
             state.rejected_by[i] = candidate.tested;
@@ -551,6 +558,45 @@ class Grower {
       }
     }
     return added;
+  }
+
+  // Whether the surface around p continues the segment's surface there: the mean offset from the
+  // plane of the free points within r of p (p included) against that of the segment's own points
+  // within r, both within twice the threshold, must differ by at most continuity x the threshold.
+  // A plane test alone lets in the points of a parallel surface a few sigmas behind (a door leaf
+  // in its recess, at high noise) one in twenty, each pulling the plane towards the rest of it;
+  // the mean of a dozen neighbours is four times surer than one point. Against the segment's own
+  // neighbours, not the plane, so that a seed plane still turned by its first few points grows.
+  // Points of other segments (the wall along a floor's edge) are left out; with fewer than
+  // kMinContinuityPoints on either side there is nothing to compare.
+  bool continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment) const {
+    if (options_.continuity <= 0.0) return true;
+    const Plane& plane = planes_[segment];
+    const double window = 2.0 * thresholds_[segment];
+    double free_sum = 0.0;
+    double own_sum = 0.0;
+    std::uint32_t free_count = 0;
+    std::uint32_t own_count = 0;
+    grid_.forEachAround(p, [&](const GridKey& key) {
+      const auto it = state.by_grid.find(key);
+      if (it == state.by_grid.end()) return;
+      for (std::uint32_t j : it->second) {
+        const std::uint8_t owner = state.assigned[j];
+        if (owner != 0 && owner != segment + 1) continue;
+        if ((state.points[j] - p).squaredNorm() > radius_ * radius_) continue;
+        const double d = plane.signedDistance(state.points[j]);
+        if (std::abs(d) >= window) continue;
+        if (owner == 0) {
+          free_sum += d;
+          ++free_count;
+        } else {
+          own_sum += d;
+          ++own_count;
+        }
+      }
+    });
+    if (free_count < kMinContinuityPoints || own_count < kMinContinuityPoints) return true;
+    return std::abs(free_sum / free_count - own_sum / own_count) <= options_.continuity * thresholds_[segment];
   }
 
   void refit(std::uint32_t segment) {
@@ -818,6 +864,7 @@ class Grower {
   // 0.18 r. 0.3 r keeps nine in ten inside and a fifth of those on the border.
   static constexpr double kInsideOffset = 0.3;
   static constexpr std::uint32_t kMinAroundPoints = 4;
+  static constexpr std::uint32_t kMinContinuityPoints = 4;
 
   lod::NodeCache& cache_;
   const lod::Octree& octree_;

@@ -42,6 +42,11 @@ struct GrowOptions {
   // noise_sigmas = 0 gives the paper's plain t_p.
   double noise_sigmas = 2.25;
   double min_threshold_fraction = 0.1;
+  // And only where the surface around the point continues the segment's: the mean offset of the
+  // free points around it and that of the segment's points around it differ by at most
+  // continuity x the threshold (a parallel surface just behind, a door leaf in its recess, stays
+  // out). 0 turns the test off.
+  double continuity = 0.5;
   // After convergence, move each point to the nearest plane among the segments around it and
   // refit (the growth gives a point to whichever segment reaches it first).
   bool settle = true;

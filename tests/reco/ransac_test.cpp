@@ -49,6 +49,39 @@ TEST(Ransac, FindsTheFloorAmongOutliers) {
   EXPECT_EQ(repeat->inliers, result->inliers) << "the same seed gives the same plane";
 }
 
+//   z                  x = 2: 280 points spread evenly over the whole window (+-3 cm), as the
+//   |                  strips of two walls along their edge lie about a plane slanted across it
+//   |                  |
+//   +=========== x     z = 0: 200 points with 1 mm noise
+// Counting inliers takes the slab, which has more; MSAC takes the plane whose points lie close.
+TEST(Ransac, MsacPrefersTheTightPlaneToAFullerLooseSlab) {
+  Random random(4);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 200; ++i) points.emplace_back(random.uniform(), random.uniform(), 0.001 * random.gaussian());
+  for (int i = 0; i < 280; ++i) {
+    points.emplace_back(2.0 + 0.06 * (random.uniform() - 0.5), random.uniform(), random.uniform());
+  }
+  std::vector<std::uint32_t> all(points.size());
+  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const PlaneSampleModel model(points);
+  RansacOptions options;
+  options.threshold = 0.03;
+  options.confidence = 0.9999;  // both planes are sampled, whichever the score
+
+  options.score = RansacScore::kInlierCount;
+  Random counting(1);
+  const auto slab = ransacPlane(model, all, options, counting);
+  ASSERT_TRUE(slab.has_value());
+  EXPECT_LE(angleBetween(slab->plane.normal, Eigen::Vector3d::UnitX()), 2.0 * M_PI / 180.0);
+
+  options.score = RansacScore::kTruncatedSquares;
+  Random msac(1);
+  const auto tight = ransacPlane(model, all, options, msac);
+  ASSERT_TRUE(tight.has_value());
+  EXPECT_LE(angleBetween(tight->plane.normal, Eigen::Vector3d::UnitZ()), 2.0 * M_PI / 180.0);
+  EXPECT_GE(tight->inliers.size(), 195u);
+}
+
 TEST(Ransac, CollinearOrTooFewPointsGiveNoPlane) {
   std::vector<Eigen::Vector3d> line;
   for (int i = 0; i < 100; ++i) line.emplace_back(512000.0 + 0.01 * i, 5403000.0 + 0.02 * i, 250.0);

@@ -231,6 +231,48 @@ TEST(RegionGrower, TheRobustFinalFitTakesBackTheNoiseTails) {
   EXPECT_GT(refined.tests_skipped, 0u);
 }
 
+//   x = 0        x = -0.12        x = 0
+//   wall strip | door leaf in its | wall        seen from above; 3 cm noise along the normals
+//   0.6 m      | recess, 0.9 m    | 0.6 m       and a 9 cm plane threshold (3 sigma), the lintel
+//              +------------------+             over the leaf joins the wall's two parts
+// The leaf lies four sigmas behind the wall: one of its points in twenty is within the
+// threshold of the wall's plane, and each that joins turns the plane towards the rest of the
+// leaf. Testing that the surface around a point continues the wall's keeps the leaf out.
+TEST(RegionGrower, ADoorLeafInItsRecessStaysOutOfTheWallAtHighNoise) {
+  test::TempDirectory dir;
+  const std::vector<Patch> patches{{kUtm, {0, 0.6, 0}, {0, 0, 2.5}},
+                                   {kUtm + Eigen::Vector3d(-0.12, 0.6, 0), {0, 0.9, 0}, {0, 0, 2.05}},
+                                   {kUtm + Eigen::Vector3d(0, 1.5, 0), {0, 0.6, 0}, {0, 0, 2.5}},
+                                   {kUtm + Eigen::Vector3d(0, 0.6, 2.05), {0, 0.9, 0}, {0, 0, 0.45}}};
+  const auto octree = buildPatches(dir, patches, 40'000, 0.03);
+  lod::NodeCache cache(octree, 256 << 20);
+  GrowParameters parameters = parametersForDensity(kUtm + Eigen::Vector3d(0, 0.25, 1.2), 1.0 / std::pow(0.05, 3), 0.25);
+  parameters.plane_threshold_m = 0.09;
+  GrowOptions plane_test_only;
+  plane_test_only.continuity = 0.0;
+  for (const bool continuity : {false, true}) {
+    const GrowSnapshot result = growRegions(cache, parameters, continuity ? GrowOptions{} : plane_test_only);
+    ASSERT_FALSE(result.segments.empty());
+    const Plane& wall = result.segments[0].plane;
+    const double tilt = angleDeg(wall.normal, Eigen::Vector3d::UnitX());
+    const double far_end_m = wall.distance(kUtm + Eigen::Vector3d(0, 2.1, 1.2));
+    std::printf("continuity %d: %llu points, tilt %.2f deg, %.1f mm off at the far end\n", continuity,
+                static_cast<unsigned long long>(result.segments[0].points), tilt, 1e3 * far_end_m);
+    if (!continuity) {
+      EXPECT_GT(tilt, 2.0) << "the plane test alone should let the leaf turn the plane";
+      continue;
+    }
+    EXPECT_LT(tilt, 0.5);
+    EXPECT_LT(far_end_m, 0.015);
+    std::uint64_t wall_points = 0;
+    for (const std::uint16_t id : std::array<std::uint16_t, 3>{0, 2, 3}) {
+      wall_points += pointsOfPatchAtLevel(cache, result.level, id);
+    }
+    EXPECT_GT(static_cast<double>(result.segments[0].points), 0.9 * static_cast<double>(wall_points))
+        << "the wall grows over the lintel to its far part";
+  }
+}
+
 //   +---------------------+
 //   |        floor        |   a 4 x 4 m floor with no points in a 0.8 x 0.8 m square: the scan
 //   |    +----+           |   shadow of an occluder. Growing from one side reaches all around
