@@ -61,7 +61,6 @@ std::array<double, 3> array(const Eigen::Vector3d& p) {
 class Membership {
  public:
   explicit Membership(const lod::Octree& octree) : octree_(octree) {}
-  bool assigned(const lod::PointRef& ref) { return node(ref.node)[ref.index] != 0; }
   // 0 for none, s + 1 for segment s.
   std::uint8_t flag(const lod::PointRef& ref) { return node(ref.node)[ref.index]; }
   void assign(const lod::PointRef& ref, std::uint32_t segment) {
@@ -111,9 +110,10 @@ struct CellState {
   bool processed = false;
   std::vector<Eigen::Vector3d> points;
   std::vector<lod::PointRef> refs;
-  // Which segment each point has joined (0 for none, s + 1 for segment s): Membership's answer,
-  // kept here because the growth asks it for every candidate. Claims are disjoint, so while this cell exists its points
-  // join only through it.
+  // Which segment each point joined during the growth (0 for none, s + 1 for segment s):
+  // Membership's flag, kept here because the growth asks it for every candidate and its
+  // neighbours. Claims are disjoint, so while this cell exists its points join only through it.
+  // (Settle and refine move points between segments afterwards in Membership only.)
   std::vector<std::uint8_t> assigned;
   // For a point that no segment took: the plane epoch of its last test, and the segments it was
   // tested against then (bit s). A test repeated from another border point of one of those
