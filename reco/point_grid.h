@@ -52,6 +52,13 @@ class PointGrid {
     }
   }
 
+  // The corner of grid cell `key` with the smallest coordinates; the cell is one step wide.
+  Eigen::Vector3d cellMin(const GridKey& key) const {
+    return origin_ +
+           Eigen::Vector3d(static_cast<double>(key.x), static_cast<double>(key.y), static_cast<double>(key.z)) /
+               inverse_;
+  }
+
   // The squared distance from p to the nearest point of grid cell `key` (0 inside it).
   double squaredDistanceToCell(const Eigen::Vector3d& p, const GridKey& key) const {
     const Eigen::Vector3d g = (p - origin_) * inverse_;

@@ -20,12 +20,15 @@
 //   5. After a cell that added points, refit the grown planes and publish a snapshot: planes,
 //      outlines (outline.h) and the edges and corners between the segments (edges_and_corners.h),
 //      the last two redrawn as the segments grow by a quarter.
-//   6. Stop when the queue is empty (converged) or the cancel flag is set (checked per cell).
+//   6. When the queue is empty, each segment may bridge a gap wider than r (bridgeGaps): the free
+//      points on its plane within r_s / 2 of it join, and the loop goes on from them. Stop when
+//      no bridge finds anything (converged) or the cancel flag is set (checked per cell).
 //   7. Settle (converged grows): points near where segments meet move to the nearest plane
 //      among the segments around them, and the planes are refitted.
 //   8. Refine (converged grows): each plane's final fit is a robust M-estimate over the points
 //      around its segment (robust_plane_fit.h), which may take in points the growth turned away
-//      and give up others; the final result has everything drawn anew.
+//      and give up others, and then a least-squares fit where the points lie away from the
+//      segment's border (interior_points.h); the final result has everything drawn anew.
 
 #include "reco/region_grower.h"
 
@@ -40,6 +43,7 @@
 #include <unordered_set>
 
 #include "reco/cell_claims.h"
+#include "reco/interior_points.h"
 #include "reco/point_grid.h"
 #include "reco/point_spacing.h"
 #include "reco/robust_plane_fit.h"
@@ -155,9 +159,12 @@ class Grower {
     seed();
     for (;;) {
       if (queue_.empty()) {
-        if (!locked_level_) break;
-        unlockLevel();
-        continue;
+        if (locked_level_) {
+          unlockLevel();
+          continue;
+        }
+        if (bridgeGaps()) continue;
+        break;
       }
       if (options_.cancel != nullptr && options_.cancel->load()) {
         snapshot_.cancelled = true;
@@ -441,6 +448,7 @@ class Grower {
     regressions_.resize(planes.size());
     planes_.resize(planes.size());
     fitted_count_.assign(planes.size(), 0);
+    bridges_left_.assign(planes.size(), kMaxBridges);
     thresholds_.assign(planes.size(), parameters_.plane_threshold_m);
     segment_points_.resize(planes.size());
     segment_refs_.resize(planes.size());
@@ -558,6 +566,94 @@ class Grower {
       }
     }
     return added;
+  }
+
+  // --- bridging gaps -----------------------------------------------------------------------------
+
+  // Where the growth has stopped, a segment may be stuck at a gap wider than r that the seed's
+  // scale does not see: the scan lines of a floor seen at grazing angles, farther apart than the
+  // points of the walls beside it (whose spacing sets r), or the shadow of a cabinet leg. Each
+  // segment takes the free points within half the seed radius of its points that lie within its
+  // threshold and that no segment within r of them accepts (the continuity test's rejects stay
+  // out); the growth goes on from them at r. Returns whether any segment took a point.
+  bool bridgeGaps() {
+    if (!options_.bridge_gaps) return false;
+    const double reach = 0.5 * parameters_.seed_radius_m;
+    if (reach <= radius_) return false;  // r spans such gaps already
+    bool bridged = false;
+    for (std::uint32_t s = 0; s < regressions_.size(); ++s) {
+      if (bridges_left_[s] == 0 || !planes_[s].valid) continue;
+      if (bridge(s, reach)) {
+        --bridges_left_[s];
+        ++snapshot_.bridges;
+        bridged = true;
+      } else {
+        bridges_left_[s] = 0;  // nothing within reach; the others' bridges do not change that
+      }
+    }
+    return bridged;
+  }
+
+  using PointsByGridCell = std::unordered_map<GridKey, std::vector<Eigen::Vector3d>, GridKeyHash>;
+
+  // One bridge from segment s: the free points within `reach` of its points that join it.
+  bool bridge(std::uint32_t s, double reach) {
+    const PointGrid coarse(parameters_.seed, reach);
+    PointsByGridCell own;
+    for (const Eigen::Vector3d& p : segment_points_[s]) own[coarse.keyOf(p)].push_back(p);
+    const auto withinReach = [&](const Eigen::Vector3d& q) {
+      bool found = false;
+      coarse.forEachAround(q, [&](const GridKey& key) {
+        const auto it = own.find(key);
+        if (found || it == own.end()) return;
+        found = std::any_of(it->second.begin(), it->second.end(),
+                            [&](const Eigen::Vector3d& p) { return (p - q).squaredNorm() <= reach * reach; });
+      });
+      return found;
+    };
+    std::vector<std::pair<CellKey, std::uint32_t>> taken;
+    for (const CellKey& key : cellsWithinReach(own, coarse, reach)) {
+      CellState& state = loaded(key);
+      for (std::uint32_t i = 0; i < state.points.size(); ++i) {
+        const Eigen::Vector3d& q = state.points[i];
+        if (state.assigned[i] || planes_[s].distance(q) >= thresholds_[s] || !withinReach(q)) continue;
+        // A point that a segment within r accepts is the growth's to give (it turned it away,
+        // or has yet to reach it).
+        if (bestSegment(q, false).segment >= 0) continue;
+        taken.emplace_back(key, i);
+      }
+    }
+    for (const auto& [key, i] : taken) assign(cells_[key], i, s);
+    if (!taken.empty()) refit(s);
+    return !taken.empty();
+  }
+
+  // The cells that may hold points within `reach` of the points in the `coarse` grid cells
+  // `own` (a grid of step `reach`): those the grid cells' boxes, widened by reach, meet, claimed
+  // at the working level where none is claimed yet. Sorted, so that the points join in the same
+  // order whatever the hashing.
+  std::vector<CellKey> cellsWithinReach(const PointsByGridCell& own, const PointGrid& coarse, double reach) {
+    const double step = std::min(octree_.cube().cellSize(working_level_), reach);
+    std::unordered_set<CellKey, lod::CellKeyHash> result;
+    for (const auto& entry : own) {
+      const Eigen::Vector3d low = coarse.cellMin(entry.first) - Eigen::Vector3d::Constant(reach);
+      const Eigen::Vector3d high = low + Eigen::Vector3d::Constant(3.0 * reach);
+      std::array<double, 3> p{};
+      for (p[2] = low.z();; p[2] = std::min(p[2] + step, high.z())) {
+        for (p[1] = low.y();; p[1] = std::min(p[1] + step, high.y())) {
+          for (p[0] = low.x();; p[0] = std::min(p[0] + step, high.x())) {
+            bool created = false;
+            result.insert(claims_.claimAt(p, working_level_, octree_.header().depth, created));
+            if (p[0] >= high.x()) break;
+          }
+          if (p[1] >= high.y()) break;
+        }
+        if (p[2] >= high.z()) break;
+      }
+    }
+    std::vector<CellKey> sorted(result.begin(), result.end());
+    std::sort(sorted.begin(), sorted.end());
+    return sorted;
   }
 
   // Whether the surface around p continues the segment's surface there: the mean offset from the
@@ -766,7 +862,8 @@ class Grower {
   // round gives every pool point to the nearest plane, among the near segments', whose window
   // (refine_c times that segment's robust scale) holds it, weighs it by the biweight and refits
   // the planes; the scales follow the points each segment holds. The segments' points become those
-  // of positive weight: a point may join that the growth turned away, or leave.
+  // of positive weight: a point may join that the growth turned away, or leave. A last fit weighs
+  // the points inside each segment by 1.
   void refine() {
     const std::size_t n = regressions_.size();
     struct PoolPoint {
@@ -830,6 +927,24 @@ class Grower {
       }
     }
 
+    // The last fit gives the points inside each segment full weight: there the biweight only
+    // costs efficiency (86 %), while the strips of the surfaces that meet a plane, all on one
+    // side of it, lie along its border, where the biweight's weights stay.
+    std::vector<std::vector<Eigen::Vector3d>> members(n);
+    std::vector<std::vector<double>> member_weights(n);
+    for (std::size_t i = 0; i < pool.size(); ++i) {
+      if (owner[i] < 0 || !(weights[i] > 0.0)) continue;
+      members[static_cast<std::size_t>(owner[i])].push_back(pool[i].position);
+      member_weights[static_cast<std::size_t>(owner[i])].push_back(weights[i]);
+    }
+    for (std::uint32_t s = 0; s < n; ++s) {
+      const std::vector<bool> interior = interiorPoints(planes_[s], members[s], radius_);
+      for (std::size_t j = 0; j < interior.size(); ++j) {
+        if (interior[j]) member_weights[s][j] = 1.0;
+      }
+      const Plane fitted = fitWeightedPlane(members[s], member_weights[s]);
+      if (fitted.valid) planes_[s] = fitted;
+    }
     for (auto& list : segment_points_) list.clear();
     for (auto& list : segment_refs_) list.clear();
     for (std::size_t i = 0; i < pool.size(); ++i) {
@@ -865,6 +980,9 @@ class Grower {
   static constexpr double kInsideOffset = 0.3;
   static constexpr std::uint32_t kMinAroundPoints = 4;
   static constexpr std::uint32_t kMinContinuityPoints = 4;
+  // A floor seen at grazing angles needs a bridge per scan line until it reaches denser ground;
+  // this bounds the work where a segment keeps finding a point or two beyond r.
+  static constexpr std::uint32_t kMaxBridges = 32;
 
   lod::NodeCache& cache_;
   const lod::Octree& octree_;
@@ -884,6 +1002,7 @@ class Grower {
   std::vector<Plane> planes_;                                 // the regressions' planes, refitted as they grow
   std::vector<std::uint64_t> fitted_count_;                   // regression size at the last refit
   std::vector<double> thresholds_;                            // per segment: what a point may be off its plane
+  std::vector<std::uint32_t> bridges_left_;                   // per segment: bridges it may still try
   std::vector<std::vector<Eigen::Vector3d>> segment_points_;  // for outlines, edges and corners
   std::vector<std::vector<lod::PointRef>> segment_refs_;      // the same points' identities
   std::vector<bool> grown_;

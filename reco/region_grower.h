@@ -47,12 +47,18 @@ struct GrowOptions {
   // continuity x the threshold (a parallel surface just behind, a door leaf in its recess, stays
   // out). 0 turns the test off.
   double continuity = 0.5;
+  // Where the growth stops, a segment that covers less than the seed disc (pi r_s^2) may take the
+  // free points within r_s / 2 of it that lie on its plane and go on growing from them: the gaps
+  // between a grazing floor's scan lines, a shadow (region_grower.cpp, bridgeGaps).
+  bool bridge_gaps = true;
   // After convergence, move each point to the nearest plane among the segments around it and
   // refit (the growth gives a point to whichever segment reaches it first).
   bool settle = true;
   // Then refit each plane robustly (robust_plane_fit.h): Tukey's biweight over a window of
   // refine_c robust standard deviations of its residuals, refine_rounds times, over its points
-  // and the unassigned ones around them. 0 keeps the least-squares fit of the grown points.
+  // and the unassigned ones around them; the last fit gives the points inside a segment, away
+  // from its border, full weight (interior_points.h). 0 keeps the least-squares fit of the grown
+  // points.
   double refine_c = 3.5;
   std::uint32_t refine_rounds = 4;
   // Fill SegmentSnapshot::members in the final result (the octree points of each segment).
@@ -94,6 +100,7 @@ struct GrowSnapshot {
   std::uint64_t cells_visited = 0;     // cell visits (a cell is visited again when a neighbour grows to it)
   std::uint64_t points_tested = 0;     // candidate point-to-plane tests
   std::uint64_t tests_skipped = 0;     // tests of a rejected point repeated before any plane changed
+  std::uint64_t bridges = 0;           // gaps wider than r that a starved segment crossed (bridge_gaps)
   double mean_neighbour_distance = 0;  // d_avg: mean distance from an added point to the point that reached it
   double elapsed_ms = 0;
   bool converged = false;  // no cell adds anything any more

@@ -10,7 +10,9 @@
 // 3.5 sigma has 86 % efficiency (1.08 times), while a neighbouring surface's strip, whose points
 // lie all on one side of the plane and spread evenly over the window, pulls it no harder: its
 // weighted first moment is c^2 / 6 against the hard window's c^2 / 2 (2.0 against 1.9 sigma^2).
-// The region grower applies it to the settled segments (region_grower.h, GrowOptions::refine_c).
+// The region grower applies it to the settled segments (region_grower.h, GrowOptions::refine_c),
+// and its last fit gives the points away from a segment's border full weight
+// (interior_points.h): the strips lie along the border, and inside the efficiency is all.
 
 #include <Eigen/Core>
 #include <span>

@@ -165,7 +165,44 @@ Truth readTruth(const std::string& path) {
 // One least-squares regression per true plane over all the points the PLY labels with it.
 // io::PointReader drops the simulator's plane_id, so this reads the simulator's own layout:
 // binary little-endian, one vertex element, scalar properties.
-std::vector<reco::PlaneRegression> fitTruePlanes(const std::string& path, std::size_t plane_count) {
+// The true plane of each simulated point, found by position (--print-segments): which surface
+// the points of a grown segment came from.
+class PointLabels {
+ public:
+  void add(const Eigen::Vector3d& p, std::uint32_t id) { cells_[keyOf(p)].push_back({p, id}); }
+  // The label of the simulated point at p (the octree keeps positions to a few micrometres).
+  std::optional<std::uint32_t> at(const Eigen::Vector3d& p) const {
+    const Key k = keyOf(p);
+    double best = kCell * kCell;
+    std::optional<std::uint32_t> label;
+    for (std::int64_t dz = -1; dz <= 1; ++dz)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          const auto it = cells_.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == cells_.end()) continue;
+          for (const auto& [q, id] : it->second) {
+            if ((q - p).squaredNorm() < best) {
+              best = (q - p).squaredNorm();
+              label = id;
+            }
+          }
+        }
+    return label;
+  }
+
+ private:
+  static constexpr double kCell = 0.001;
+  using Key = std::array<std::int64_t, 3>;
+  Key keyOf(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d g = (p - kOffset) / kCell;
+    return {static_cast<std::int64_t>(std::floor(g.x())), static_cast<std::int64_t>(std::floor(g.y())),
+            static_cast<std::int64_t>(std::floor(g.z()))};
+  }
+  std::map<Key, std::vector<std::pair<Eigen::Vector3d, std::uint32_t>>> cells_;
+};
+
+std::vector<reco::PlaneRegression> fitTruePlanes(const std::string& path, std::size_t plane_count,
+                                                 PointLabels* labels) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw fileError(path, "cannot open the simulated scan");
   std::string line;
@@ -227,7 +264,9 @@ std::vector<reco::PlaneRegression> fitTruePlanes(const std::string& path, std::s
       const std::byte* row = rows.data() + i * row_bytes;
       const auto id = io::loadLittleEndian<std::uint32_t>(row + plane_id.offset);
       if (id >= plane_count) throw fileError(path, "plane_id " + std::to_string(id) + " is not in the truth");
-      regressions[id].add({coordinate(row, x), coordinate(row, y), coordinate(row, z)});
+      const Eigen::Vector3d p(coordinate(row, x), coordinate(row, y), coordinate(row, z));
+      regressions[id].add(p);
+      if (labels != nullptr) labels->add(p, id);
     }
     done += count;
   }
@@ -306,12 +345,23 @@ struct Settings {
   bool print_segments = false;
 };
 
-// One line per segment of a grow (--print-segments): its points, and against the limit plane of
-// the corner's three whose normal is nearest its own, the angle between them and how far the
-// segment's plane passes from the limit corner. Shows which plane of a bad corner is off.
+// Where `plane` passes the limit corner along the limit plane's normal, towards the room's
+// inside (positive: the plane lies inside the limit's), in millimetres.
+double insideOffsetMm(const reco::Plane& plane, const reco::Plane& limit, const Eigen::Vector3d& limit_corner) {
+  const Eigen::Vector3d centre = kOffset + Eigen::Vector3d(3.5, 2.5, 1.25);
+  const Eigen::Vector3d inward = limit.normal.dot(centre - limit_corner) > 0.0 ? limit.normal : -limit.normal;
+  return -plane.signedDistance(limit_corner) / plane.normal.dot(inward) * 1e3;
+}
+
+// Two lines per segment of a grow (--print-segments). First its points, and against the limit
+// plane of the corner's three whose normal is nearest its own, the angle between them and how far
+// the segment's plane passes from the limit corner: which plane of a bad corner is off. Then
+// where its points came from (their true planes) and, signed towards the room's inside, where the
+// segment's plane, the least-squares plane of its points and that of its points of the limit's
+// plane pass the limit corner: whether a plane is off by its points or by its fit.
 void printSegments(double noise_mm, std::uint32_t repetition, const TruthCorner& corner, const std::string& detail,
                    const reco::GrowSnapshot& result, const std::array<reco::Plane, 3>& limits,
-                   const Eigen::Vector3d& limit_corner) {
+                   const Eigen::Vector3d& limit_corner, lod::NodeCache& cache, const PointLabels& labels) {
   static std::mutex output;
   const std::lock_guard lock(output);
   for (std::size_t s = 0; s < result.segments.size(); ++s) {
@@ -329,6 +379,29 @@ void printSegments(double noise_mm, std::uint32_t repetition, const TruthCorner&
                  static_cast<unsigned long long>(result.segments[s].points), best,
                  static_cast<unsigned long long>(limits[best].point_count), angle_mrad,
                  plane.distance(limit_corner) * 1e3);
+    reco::PlaneRegression all = reco::PlaneRegression::withReference(kOffset);
+    reco::PlaneRegression own = reco::PlaneRegression::withReference(kOffset);
+    std::map<std::int64_t, std::uint64_t> sources;  // true plane id (-1: not found) -> points
+    for (const lod::PointRef& ref : result.segments[s].members) {
+      const auto node = cache.get(cache.octree().nodes()[ref.node].key);
+      const auto position = node->position(ref.index);
+      const Eigen::Vector3d p(position[0], position[1], position[2]);
+      const std::optional<std::uint32_t> label = labels.at(p);
+      ++sources[label ? static_cast<std::int64_t>(*label) : -1];
+      all.add(p);
+      if (label == corner.planes[best]) own.add(p);
+    }
+    std::string from;
+    for (const auto& [id, count] : sources) {
+      char entry[48];
+      std::snprintf(entry, sizeof entry, " %lld:%llu", static_cast<long long>(id),
+                    static_cast<unsigned long long>(count));
+      from += entry;
+    }
+    std::fprintf(stderr, "  sources%s; inside offsets: plane %+.4f mm, least squares %+.4f mm, own points %+.4f mm\n",
+                 from.c_str(), insideOffsetMm(plane, limits[best], limit_corner),
+                 insideOffsetMm(all.fit(), limits[best], limit_corner),
+                 insideOffsetMm(own.fit(), limits[best], limit_corner));
   }
 }
 
@@ -349,7 +422,9 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
   reco::sim::simulate(request);
 
   const Truth truth = readTruth(request.truth_path);
-  const std::vector<reco::PlaneRegression> regressions = fitTruePlanes(request.ply_path, truth.planes.size());
+  PointLabels labels;
+  const std::vector<reco::PlaneRegression> regressions =
+      fitTruePlanes(request.ply_path, truth.planes.size(), settings.print_segments ? &labels : nullptr);
 
   lod::BuildOptions build;
   build.sources = lod::fileSources({request.ply_path});
@@ -391,6 +466,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
       options.random_seed = repetition;
       options.noise_sigmas = settings.noise_sigmas;
       options.refine_c = settings.refine_c;
+      options.collect_members = settings.print_segments;
       // A grow that runs away would hold up the whole evaluation: cancelled past the limit, it
       // counts as lost and as timed out. The grower looks at the flag between cells.
       std::atomic<bool> cancel{false};
@@ -400,7 +476,9 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
         if (s.elapsed_ms > limit_ms) cancel = true;
       });
 
-      if (settings.print_segments) printSegments(noise_mm, repetition, corner, detail, result, fitted, *limit_corner);
+      if (settings.print_segments) {
+        printSegments(noise_mm, repetition, corner, detail, result, fitted, *limit_corner, cache, labels);
+      }
       double nearest = std::numeric_limits<double>::infinity();
       for (const reco::Corner& found : result.corners)
         nearest = std::min(nearest, (found.position - corner.position).norm());

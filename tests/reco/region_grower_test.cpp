@@ -297,6 +297,61 @@ TEST(RegionGrower, GrowthGoesAroundAScanShadow) {
               0.02 * static_cast<double>(floor));
 }
 
+//   z
+//   |  wall: x = 0, y in [0, 3], z in [0, 2.5], a point every 5 cm or so
+//   |
+//   +--|---|---|---|---|--:::::::::::::::: x     floor: z = 0, seen at grazing angles: five scan
+//     0.17   0.43 ...  1.21  1.3          3      lines along y, 26 cm apart with a point every
+//                                                4 cm, then dense ground from x = 1.3
+// The seed sphere (0.6 m, at the foot of the wall) reaches the first three lines; the floor's
+// seed plane sets r to about 0.17 m, which does not reach across to the fourth. Without bridges
+// the floor keeps those three lines; with them it crosses the two gaps left, one at a time,
+// reaches the dense ground and grows over the whole floor.
+TEST(RegionGrower, AFloorSeenAtGrazingAnglesBridgesTheGapsBetweenItsScanLines) {
+  test::TempDirectory dir;
+  constexpr std::uint64_t kLines = 5, kPerLine = 75, kLinePoints = kLines * kPerLine, kWall = 3'000;
+  const auto octree = buildGenerated(dir, "grazing.plumb", kLinePoints + kWall + 30'000, [](std::uint64_t i) {
+    const double noise = 0.001 * (test::unitHash(i, 3) - 0.5);
+    Eigen::Vector3d p;
+    std::uint16_t id = 1;  // floor
+    if (i < kLinePoints) {
+      p = {0.17 + 0.26 * static_cast<double>(i / kPerLine), 0.04 * static_cast<double>(i % kPerLine), noise};
+    } else if (i < kLinePoints + kWall) {
+      p = {noise, 3.0 * test::unitHash(i, 1), 2.5 * test::unitHash(i, 2)};
+      id = 0;
+    } else {
+      p = {1.3 + 1.7 * test::unitHash(i, 1), 3.0 * test::unitHash(i, 2), noise};
+    }
+    const Eigen::Vector3d q = kUtm + p;
+    return test::withId(q.x(), q.y(), q.z(), id);
+  });
+  lod::NodeCache cache(octree, 256 << 20);
+  const GrowParameters parameters =
+      parametersForDensity(kUtm + Eigen::Vector3d(0.1, 1.5, 0.1), 1.0 / std::pow(0.05, 3), 0.6);
+  GrowOptions no_bridges;
+  no_bridges.bridge_gaps = false;
+  for (const bool bridge : {false, true}) {
+    const GrowSnapshot result = growRegions(cache, parameters, bridge ? GrowOptions{} : no_bridges);
+    const auto floor = std::find_if(result.segments.begin(), result.segments.end(), [](const SegmentSnapshot& s) {
+      return s.plane.valid && angleDeg(s.plane.normal, Eigen::Vector3d::UnitZ()) < 5.0;
+    });
+    ASSERT_NE(floor, result.segments.end()) << "the seed should find the floor";
+    const std::uint64_t floor_points = pointsOfPatchAtLevel(cache, result.level, 1);
+    std::printf("bridges %s: r %.3f m, floor %llu of %llu points, %llu bridges\n", bridge ? "on" : "off",
+                result.search_radius_m, static_cast<unsigned long long>(floor->points),
+                static_cast<unsigned long long>(floor_points), static_cast<unsigned long long>(result.bridges));
+    EXPECT_LT(result.search_radius_m, 0.26) << "r must not span the gaps by itself, or this tests nothing";
+    if (!bridge) {
+      EXPECT_LE(floor->points, 3 * kPerLine) << "without bridges the floor should keep to its first three lines";
+      EXPECT_EQ(result.bridges, 0u);
+      continue;
+    }
+    EXPECT_GE(result.bridges, 2u);
+    EXPECT_TRUE(holdsPatch(floor->points, floor_points));
+    EXPECT_LT(angleDeg(floor->plane.normal, Eigen::Vector3d::UnitZ()), 0.05);
+  }
+}
+
 //   y = 0.3 +-----------+-----------------------------------+
 //           | . . . . . |:::::::::::::::::::::::::::::::::::|  a floor strip, 4 x 0.3 m: a
 //           | . . . . . |:::::::::::::::::::::::::::::::::::|  17 mm lattice on x < 1, a hundred

@@ -117,10 +117,11 @@ Command addGrowCommand(CLI::App& plumb) {
       std::printf("  corner      segments %u-%u-%u at %.4f %.4f %.4f\n", corner.segments[0], corner.segments[1],
                   corner.segments[2], corner.position.x(), corner.position.y(), corner.position.z());
     }
-    std::printf("  time        first snapshot %.1f ms, %s %.1f ms; %s cell visits, %s point tests (%s skipped)\n",
-                first_progress_ms, result.converged ? "converged" : "stopped", result.elapsed_ms,
-                withThousands(result.cells_visited).c_str(), withThousands(result.points_tested).c_str(),
-                withThousands(result.tests_skipped).c_str());
+    std::printf(
+        "  time        first snapshot %.1f ms, %s %.1f ms; %s cell visits, %s point tests (%s skipped), %s bridges\n",
+        first_progress_ms, result.converged ? "converged" : "stopped", result.elapsed_ms,
+        withThousands(result.cells_visited).c_str(), withThousands(result.points_tested).c_str(),
+        withThousands(result.tests_skipped).c_str(), withThousands(result.bridges).c_str());
 
     if (!options->json.empty()) {
       writeGrowJson({options->cloud, seed, parameters, result, first_progress_ms}, options->json);

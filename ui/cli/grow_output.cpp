@@ -88,7 +88,8 @@ void writeGrowJson(const GrowReport& report, const std::string& path) {
                               {"converged_ms", result.elapsed_ms},
                               {"cells_visited", result.cells_visited},
                               {"points_tested", result.points_tested},
-                              {"tests_skipped", result.tests_skipped}}}};
+                              {"tests_skipped", result.tests_skipped},
+                              {"bridges", result.bridges}}}};
   const std::string text = root.dump(1) + "\n";
   AtomicFile file(path);
   file.write(text.data(), text.size());
