@@ -51,15 +51,15 @@ std::vector<bool> interiorPoints(const Plane& plane, std::span<const Eigen::Vect
     high = high.cwiseMax(uv[i]);
   }
   constexpr double kMargin = 2.0;
-  const auto cellsFor = [&](double s) {
-    const Eigen::Vector2d n = ((high - low) / s).array().floor() + 1.0 + 2.0 * kMargin;
-    return n.x() * n.y();
-  };
-  while (cellsFor(step) > static_cast<double>(kMaxInteriorCells)) step *= 2.0;
+  // Cells along one axis of the raster for an extent of the points, margins included.
+  const auto cellsAcross = [&](double extent) { return std::floor(extent / step) + 1.0 + 2.0 * kMargin; };
+  while (cellsAcross(high.x() - low.x()) * cellsAcross(high.y() - low.y()) > static_cast<double>(kMaxInteriorCells)) {
+    step *= 2.0;
+  }
 
   Raster raster;
-  raster.width = static_cast<std::size_t>(std::floor((high.x() - low.x()) / step) + 1.0 + 2.0 * kMargin);
-  raster.height = static_cast<std::size_t>(std::floor((high.y() - low.y()) / step) + 1.0 + 2.0 * kMargin);
+  raster.width = static_cast<std::size_t>(cellsAcross(high.x() - low.x()));
+  raster.height = static_cast<std::size_t>(cellsAcross(high.y() - low.y()));
   raster.cells.assign(raster.width * raster.height, 0);
   std::vector<std::size_t> cell_of(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {

@@ -894,6 +894,21 @@ class Grower {
 
     std::vector<std::int8_t> owner(pool.size(), -1);
     std::vector<double> weights(pool.size(), 0.0);
+    // The pool points each segment holds (positive weight), with their weights.
+    struct Held {
+      std::vector<Eigen::Vector3d> points;
+      std::vector<double> weights;
+    };
+    const auto held = [&] {
+      std::vector<Held> result(n);
+      for (std::size_t i = 0; i < pool.size(); ++i) {
+        if (owner[i] < 0 || !(weights[i] > 0.0)) continue;
+        Held& segment = result[static_cast<std::size_t>(owner[i])];
+        segment.points.push_back(pool[i].position);
+        segment.weights.push_back(weights[i]);
+      }
+      return result;
+    };
     for (std::uint32_t round = 0; round < options_.refine_rounds; ++round) {
       std::vector<std::vector<double>> residuals(n);
       for (std::size_t i = 0; i < pool.size(); ++i) {
@@ -912,15 +927,9 @@ class Grower {
         }
         if (owner[i] >= 0) residuals[static_cast<std::size_t>(owner[i])].push_back(best);
       }
-      std::vector<std::vector<Eigen::Vector3d>> points(n);
-      std::vector<std::vector<double>> point_weights(n);
-      for (std::size_t i = 0; i < pool.size(); ++i) {
-        if (owner[i] < 0) continue;
-        points[static_cast<std::size_t>(owner[i])].push_back(pool[i].position);
-        point_weights[static_cast<std::size_t>(owner[i])].push_back(weights[i]);
-      }
+      const std::vector<Held> segments = held();
       for (std::uint32_t s = 0; s < n; ++s) {
-        const Plane fitted = fitWeightedPlane(points[s], point_weights[s]);
+        const Plane fitted = fitWeightedPlane(segments[s].points, segments[s].weights);
         if (!fitted.valid) continue;  // too few points left: the settled plane stays
         planes_[s] = fitted;
         scales[s] = robustScale(std::move(residuals[s]));
@@ -930,19 +939,13 @@ class Grower {
     // The last fit gives the points inside each segment full weight: there the biweight only
     // costs efficiency (86 %), while the strips of the surfaces that meet a plane, all on one
     // side of it, lie along its border, where the biweight's weights stay.
-    std::vector<std::vector<Eigen::Vector3d>> members(n);
-    std::vector<std::vector<double>> member_weights(n);
-    for (std::size_t i = 0; i < pool.size(); ++i) {
-      if (owner[i] < 0 || !(weights[i] > 0.0)) continue;
-      members[static_cast<std::size_t>(owner[i])].push_back(pool[i].position);
-      member_weights[static_cast<std::size_t>(owner[i])].push_back(weights[i]);
-    }
+    std::vector<Held> members = held();
     for (std::uint32_t s = 0; s < n; ++s) {
-      const std::vector<bool> interior = interiorPoints(planes_[s], members[s], radius_);
+      const std::vector<bool> interior = interiorPoints(planes_[s], members[s].points, radius_);
       for (std::size_t j = 0; j < interior.size(); ++j) {
-        if (interior[j]) member_weights[s][j] = 1.0;
+        if (interior[j]) members[s].weights[j] = 1.0;
       }
-      const Plane fitted = fitWeightedPlane(members[s], member_weights[s]);
+      const Plane fitted = fitWeightedPlane(members[s].points, members[s].weights);
       if (fitted.valid) planes_[s] = fitted;
     }
     for (auto& list : segment_points_) list.clear();
