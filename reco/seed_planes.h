@@ -13,8 +13,14 @@
 namespace plumb::reco {
 
 struct SeedOptions {
-  double threshold = 0.01;            // plane threshold t_p, metres
-  std::size_t max_planes = 3;         // a corner seed has three
+  double threshold = 0.01;     // plane threshold t_p, metres
+  std::size_t max_planes = 3;  // a corner seed has three
+  // A plane within parallel_deg of one found already (a door leaf in its recess behind the
+  // wall, a shelf above the floor) does not take one of the max_planes slots, which are for
+  // the differently oriented surfaces that meet at a corner; at most max_parallel such planes
+  // are kept (a stair has many parallel treads: the others are left for the growth).
+  double parallel_deg = 10.0;
+  std::size_t max_parallel = 1;
   double min_inlier_fraction = 0.05;  // a plane needs this share of the seed points (and >= 6)
   bool drop_unstable = true;          // Otsu's threshold on the inlier counts
   std::uint64_t seed = 1;             // of the random generator: the same points give the same planes
@@ -26,8 +32,9 @@ struct SeedPlane {
   std::vector<std::uint32_t> inliers;  // indices into the seed points
 };
 
-// The seed planes of `points`, most supported first. Each point supports at most one plane:
-// sequential RANSAC removes a plane's inliers before looking for the next.
+// The seed planes of `points`, most supported first: up to max_planes of different orientations
+// and max_parallel more parallel to those. Each point supports at most one plane: sequential
+// RANSAC removes a plane's inliers before looking for the next.
 std::vector<SeedPlane> findSeedPlanes(std::span<const Eigen::Vector3d> points, const SeedOptions& options);
 
 }  // namespace plumb::reco

@@ -69,21 +69,88 @@ std::vector<CellKey> existingNeighbours(const Octree& octree, const CellKey& key
   return result;
 }
 
-std::vector<CellPoint> pointsInCell(NodeCache& cache, const CellKey& key) {
+// An ancestor's points ordered by their cell at one deeper level.
+struct CellPointIndex::SortedNode {
+  std::shared_ptr<const NodePoints> points;
+  std::uint32_t node_index = 0;
+  std::vector<CellKey> cells;        // ascending
+  std::vector<std::uint32_t> order;  // order[i]: the point in cells[i]
+};
+
+CellPointIndex::CellPointIndex(NodeCache& cache) : cache_(cache) {}
+CellPointIndex::~CellPointIndex() = default;
+
+const CellPointIndex::SortedNode& CellPointIndex::sorted(const NodeInfo& node, std::uint32_t level) {
+  const Octree& octree = cache_.octree();
+  const auto node_index = static_cast<std::uint32_t>(&node - octree.nodes().data());
+  auto& slot = sorted_[(std::uint64_t{node_index} << 6) | level];
+  if (slot) return *slot;
+  slot = std::make_unique<SortedNode>();
+  slot->points = cache_.get(node.key);
+  slot->node_index = node_index;
+  const NodePoints& points = *slot->points;
+  std::vector<std::pair<CellKey, std::uint32_t>> keyed(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    keyed[i] = {octree.cube().cellAt(points.position(i), level), static_cast<std::uint32_t>(i)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  slot->cells.reserve(keyed.size());
+  slot->order.reserve(keyed.size());
+  for (const auto& [cell, i] : keyed) {
+    slot->cells.push_back(cell);
+    slot->order.push_back(i);
+  }
+  ++sortings_;
+  return *slot;
+}
+
+std::vector<CellPoint> CellPointIndex::pointsInCell(const CellKey& key) {
   std::vector<CellPoint> result;
-  const Octree& octree = cache.octree();
-  const Cube& cube = octree.cube();
-  for (std::optional<CellKey> level = key; level; level = level->parent()) {
+  const Octree& octree = cache_.octree();
+  if (const NodeInfo* own = octree.find(key)) {
+    const auto points = cache_.get(key);
+    const auto node_index = static_cast<std::uint32_t>(own - octree.nodes().data());
+    result.reserve(points->size());
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      result.push_back({points->position(i), {node_index, static_cast<std::uint32_t>(i)}});
+    }
+  }
+  for (std::optional<CellKey> level = key.parent(); level; level = level->parent()) {
     const NodeInfo* node = octree.find(*level);
     if (node == nullptr) continue;
-    const auto points = cache.get(*level);
-    const auto node_index = static_cast<std::uint32_t>(node - octree.nodes().data());
-    for (std::size_t i = 0; i < points->size(); ++i) {
-      const std::array<double, 3> p = points->position(i);
-      if (level->level == key.level || cube.cellAt(p, key.level) == key) {
-        result.push_back({p, {node_index, static_cast<std::uint32_t>(i)}});
+    const SortedNode& ancestor = sorted(*node, key.level);
+    const auto [first, last] = std::equal_range(ancestor.cells.begin(), ancestor.cells.end(), key);
+    for (auto it = first; it != last; ++it) {
+      const std::uint32_t i = ancestor.order[static_cast<std::size_t>(it - ancestor.cells.begin())];
+      result.push_back({ancestor.points->position(i), {ancestor.node_index, i}});
+    }
+  }
+  return result;
+}
+
+std::vector<CellPoint> CellPointIndex::pointsInCell(const CellKey& key, std::uint32_t point_level) {
+  std::vector<CellPoint> result = pointsInCell(key);
+  const Octree& octree = cache_.octree();
+  const NodeInfo* own = octree.find(key);
+  if (own == nullptr || point_level <= key.level) return result;
+  // Breadth-first through the existing descendants: every point of theirs lies inside `key`.
+  std::vector<const NodeInfo*> level_nodes{own};
+  for (std::uint32_t level = key.level; level < point_level && !level_nodes.empty(); ++level) {
+    std::vector<const NodeInfo*> next;
+    for (const NodeInfo* node : level_nodes) {
+      for (int octant = 0; octant < 8; ++octant) {
+        if (!((node->child_mask >> octant) & 1u)) continue;
+        const NodeInfo* child = octree.find(node->key.child(octant));
+        if (child == nullptr) continue;
+        next.push_back(child);
+        const auto points = cache_.get(child->key);
+        const auto node_index = static_cast<std::uint32_t>(child - octree.nodes().data());
+        for (std::size_t i = 0; i < points->size(); ++i) {
+          result.push_back({points->position(i), {node_index, static_cast<std::uint32_t>(i)}});
+        }
       }
     }
+    level_nodes = std::move(next);
   }
   return result;
 }

@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "engine/lod/octree.h"
@@ -50,10 +52,43 @@ struct CellPoint {
   PointRef ref;
 };
 
-// The points of cell `key` at its level's spacing: the points of its own node and those of its
-// ancestors that lie in the cell (Cube::cellAt decides, so each point of levels 0..key.level
-// belongs to exactly one cell of key.level). Loads through `cache`; blocks on nodes not yet
-// loaded.
-std::vector<CellPoint> pointsInCell(NodeCache& cache, const CellKey& key);
+// The points of octree cells at their level's spacing, for a caller that asks for many cells (a
+// grow visits tens of thousands at full detail). The points of cell `key` are those of its own
+// node and those of its ancestors that lie in the cell (Cube::cellAt decides, so each point of
+// levels 0..key.level belongs to exactly one cell of key.level). An ancestor holds the points of
+// thousands of cells of a deep level: scanning all of them for every cell made a cell's cost
+// follow the depth and the nodes' sizes, not what it returns. Instead each ancestor is sorted once
+// per level asked by the cell its points fall in, and a cell's points are a binary search away.
+// Not thread-safe: one per user (a grow). Keeps the nodes it has sorted alive while it lives.
+class CellPointIndex {
+ public:
+  explicit CellPointIndex(NodeCache& cache);
+  ~CellPointIndex();
+  CellPointIndex(const CellPointIndex&) = delete;
+  CellPointIndex& operator=(const CellPointIndex&) = delete;
+
+  // The points of `key`, its own node's first, then each ancestor's from the nearest up, each in
+  // storage order. Cost: the points returned plus a binary search per ancestor; the first query
+  // of a level that meets an ancestor sorts that ancestor, O(n log n) for its n points. Loads
+  // through the cache; blocks on nodes not yet loaded.
+  std::vector<CellPoint> pointsInCell(const CellKey& key);
+
+  // The points of levels 0..point_level (>= key.level) inside cell `key`: those of
+  // pointsInCell(key), then those of its descendant nodes down to point_level, parents before
+  // children. What the cells of point_level inside `key` hold together, for a caller that
+  // works in coarser cells than the density it wants (a grow at full detail).
+  std::vector<CellPoint> pointsInCell(const CellKey& key, std::uint32_t point_level);
+
+  // Ancestor sortings made so far (what plumb_bench_grow reports as the index's work).
+  std::uint64_t sortings() const { return sortings_; }
+
+ private:
+  struct SortedNode;
+  const SortedNode& sorted(const NodeInfo& node, std::uint32_t level);
+
+  NodeCache& cache_;
+  std::unordered_map<std::uint64_t, std::unique_ptr<SortedNode>> sorted_;  // by node index and level
+  std::uint64_t sortings_ = 0;
+};
 
 }  // namespace plumb::lod

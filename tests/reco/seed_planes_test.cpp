@@ -60,6 +60,37 @@ TEST(SeedPlanes, OtsuDropsAnUnstablePlane) {
   EXPECT_EQ(findSeedPlanes(points, options).size(), 2u);
 }
 
+//        z
+//        |   wall x = 0 (y, z in [0, 1]); door leaf x = -0.12 (y, z in [0.5, 1]) behind it
+//        |   wall y = 0 (x in [0, 1], z in [0, 1])
+//        +--------- y
+//       /  floor z = 0 (x, y in [0, 1]), the least supported
+//      x
+// The door leaf has more points than the floor. It is parallel to the wall, so it does not take
+// the floor's slot: all four are found, and max_parallel = 0 leaves the leaf out.
+TEST(SeedPlanes, AParallelPlaneDoesNotTakeTheSlotOfACornersThirdPlane) {
+  Random random(7);
+  std::vector<Eigen::Vector3d> points;
+  const auto noise = [&] { return 0.002 * random.gaussian(); };
+  for (int i = 0; i < 3000; ++i) points.emplace_back(noise(), random.uniform(), random.uniform());
+  for (int i = 0; i < 2000; ++i) points.emplace_back(random.uniform(), noise(), random.uniform());
+  for (int i = 0; i < 1200; ++i) {
+    points.emplace_back(-0.12 + noise(), 0.5 + 0.5 * random.uniform(), 0.5 + 0.5 * random.uniform());
+  }
+  for (int i = 0; i < 1000; ++i) points.emplace_back(random.uniform(), random.uniform(), noise());
+  SeedOptions options;
+  options.threshold = 0.008;
+  options.drop_unstable = false;
+  const auto planes = findSeedPlanes(points, options);
+  ASSERT_EQ(planes.size(), 4u);
+  EXPECT_LT(angleDeg(planes[3].plane.normal, Eigen::Vector3d::UnitZ()), 1.0) << "the floor, least supported";
+  EXPECT_NEAR(std::abs(planes[2].plane.centroid.x()), 0.12, 0.01) << "the door leaf";
+  options.max_parallel = 0;
+  const auto corner = findSeedPlanes(points, options);
+  ASSERT_EQ(corner.size(), 3u);
+  EXPECT_LT(angleDeg(corner[2].plane.normal, Eigen::Vector3d::UnitZ()), 1.0);
+}
+
 // The points within 0.6 m of a simulated room corner (2 mm noise): the three walls meeting there.
 TEST(SeedPlanes, ThreePlanesAtASimulatedRoomCorner) {
   const sim::Scene room = sim::roomScene();

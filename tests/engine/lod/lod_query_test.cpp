@@ -90,6 +90,7 @@ TEST(LodQuery, PointsInCellShareOutTheCoarserLevels) {
   test::TempDirectory dir;
   const auto octree = buildFloor(dir, "floor.plumb", 30.0);
   NodeCache cache(octree, 64 << 20);
+  CellPointIndex index(cache);
   for (std::uint32_t level = 0; level <= 3; ++level) {
     std::uint64_t expected = 0, found = 0;
     for (const NodeInfo& node : octree->nodes()) {
@@ -99,7 +100,7 @@ TEST(LodQuery, PointsInCellShareOutTheCoarserLevels) {
         if (octree->find(octree->cube().cellAt(points.position(i), level)) != nullptr) ++expected;
       }
       if (node.key.level != level) continue;
-      const auto in_cell = pointsInCell(cache, node.key);
+      const auto in_cell = index.pointsInCell(node.key);
       for (const auto& p : in_cell) {
         ASSERT_EQ(octree->cube().cellAt(p.position, level), node.key);
         // The identity names the node that stores the point, at this level or above.

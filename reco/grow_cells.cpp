@@ -1,0 +1,176 @@
+// The grower's cells (region_grower.cpp, steps 3 and 4): loading and claiming octree cells,
+// handing the frontier to the neighbouring cells, and the adaptive resolution of paper
+// section 3.6 (refine a cell into its children, mark and finish a level before coarsening).
+
+#include <algorithm>
+#include <map>
+
+#include "reco/grower.h"
+
+namespace plumb::reco::detail {
+
+CellState& Grower::loaded(const CellKey& key) {
+  CellState& state = cells_[key];
+  if (!state.loaded) {
+    state.loaded = true;
+    const std::vector<lod::CellPoint> points = cell_points_.pointsInCell(key, key.level + point_levels_);
+    for (const lod::CellPoint& p : points) {
+      const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
+      state.by_grid[grid_.keyOf(position)].push_back(static_cast<std::uint32_t>(state.points.size()));
+      state.points.push_back(position);
+      state.refs.push_back(p.ref);
+      state.assigned.push_back(membership_.flag(p.ref));
+      state.rejected_epoch.push_back(kNeverTested);
+      state.rejected_by.push_back(0);
+    }
+  }
+  return state;
+}
+
+void Grower::enqueue(const CellKey& key) {
+  if (!queued_.insert(key).second) return;
+  queue_.push({octree_.cube().squaredDistance(key, array(parameters_.seed)), key});
+}
+
+// Hands p to the frontier of every claimed cell within r of it other than the one being
+// processed (whose breadth-first search has p already), claiming cells where none is yet.
+void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment) {
+  // Cells are at least 64 search radii wide: only the sides of the processed cell's box that p
+  // is within r of lead to a neighbour (during the seed, with no cell processed, all do).
+  std::array<std::array<int, 3>, 3> steps{};  // per axis: the offsets to try, -1, 0 or +1
+  std::array<std::size_t, 3> step_count{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    steps[a][step_count[a]++] = 0;
+    if (!processing_box_ || p[static_cast<Eigen::Index>(a)] - radius_ <= processing_box_->min[a]) {
+      steps[a][step_count[a]++] = -1;
+    }
+    if (!processing_box_ || p[static_cast<Eigen::Index>(a)] + radius_ >= processing_box_->max[a]) {
+      steps[a][step_count[a]++] = 1;
+    }
+  }
+  if (step_count[0] * step_count[1] * step_count[2] == 1) return;
+  std::array<CellKey, 27> seen;
+  std::size_t count = 0;
+  for (std::size_t iz = 0; iz < step_count[2]; ++iz) {
+    for (std::size_t iy = 0; iy < step_count[1]; ++iy) {
+      for (std::size_t ix = 0; ix < step_count[0]; ++ix) {
+        const Eigen::Vector3d q = p + radius_ * Eigen::Vector3d(steps[0][ix], steps[1][iy], steps[2][iz]);
+        bool created = false;
+        const CellKey key = claims_.claimAt(array(q), working_level_, octree_.header().depth, created);
+        const auto end = seen.begin() + static_cast<std::ptrdiff_t>(count);
+        if (std::find(seen.begin(), end, key) != end) continue;
+        seen[count++] = key;
+        if (processing_ && key == *processing_) continue;
+        cells_[key].frontier.push_back({p, segment});
+        enqueue(key);
+      }
+    }
+  }
+}
+
+// The observed areal density relative to the wanted one; nullopt until enough points tell.
+std::optional<double> Grower::densityRatio() const {
+  if (front_samples_ < kMinFrontSamples || front_spacing_ <= 0.0) return std::nullopt;
+  const double ratio = parameters_.spacing_m / front_spacing_;
+  return ratio * ratio;
+}
+
+// Applies the adaptive resolution to `key` as it leaves the queue. Returns true when the cell
+// is not to be processed now (replaced, or waiting for a level change).
+bool Grower::adapt(const CellKey& key) {
+  if (locked_level_) {
+    // Finishing: only the marked cells of the locked level go on; the others wait.
+    if (key.level == *locked_level_ && !marked_parents_.contains(*key.parent())) {
+      waiting_.push_back(key);
+      return true;
+    }
+    return false;
+  }
+  const auto ratio = densityRatio();
+  if (!options_.adaptive_resolution || !ratio) return false;
+  if (*ratio < options_.refine_below && !cells_[key].processed && key.level + point_levels_ < octree_.header().depth &&
+      key.level < base_level_ + options_.max_refine_levels) {
+    const lod::NodeInfo* node = octree_.find(key);
+    if (node != nullptr && node->child_mask != 0) {  // elsewhere the finer levels add no point
+      replaceByChildren(key);
+      return true;
+    }
+  }
+  if (*ratio > options_.coarsen_above && key.level > base_level_) {
+    lockLevel(key.level);
+    return adapt(key);
+  }
+  return false;
+}
+
+void Grower::replaceByChildren(const CellKey& key) {
+  std::vector<Assigned> frontier = std::move(cells_[key].frontier);
+  cells_.erase(key);
+  claims_.release(key);
+  for (const CellKey& child : key.children()) {
+    claims_.claim(child);
+    CellState& state = cells_[child];
+    for (const Assigned& a : frontier) {
+      if (octree_.cube().squaredDistance(child, array(a.position)) <= radius_ * radius_) state.frontier.push_back(a);
+    }
+    if (!state.frontier.empty()) enqueue(child);
+  }
+  ++snapshot_.refinements;
+  working_level_ = std::max(working_level_, key.level + 1);
+  front_samples_ = 0;  // the next switch waits for what the new level shows
+}
+
+// Mark: the cells of `level` inside the parents of the cells claimed at that level so far
+// (processed, queued or idle siblings) are finished at this level before any of it moves up.
+void Grower::lockLevel(std::uint32_t level) {
+  locked_level_ = level;
+  marked_parents_.clear();
+  for (const CellKey& key : claims_.cells()) {
+    if (key.level == level) marked_parents_.insert(*key.parent());
+  }
+}
+
+// Finish: the marked cells are done; each group of waiting cells moves to its parent if the
+// density is still too high there and nothing inside that parent was processed.
+void Grower::unlockLevel() {
+  const std::uint32_t level = *locked_level_;
+  locked_level_.reset();
+  const auto ratio = densityRatio();
+  const bool coarsen = ratio && *ratio > options_.coarsen_above;
+  std::map<CellKey, std::vector<CellKey>> by_parent;
+  for (const CellKey& key : waiting_) {
+    if (claims_.claimed(key)) by_parent[*key.parent()].push_back(key);
+  }
+  waiting_.clear();
+  for (const auto& [parent, children] : by_parent) {
+    if (coarsen && canMerge(parent)) {
+      std::vector<Assigned> frontier;
+      for (const CellKey& child : parent.children()) {
+        if (!claims_.claimed(child)) continue;
+        auto& moved = cells_[child].frontier;
+        frontier.insert(frontier.end(), moved.begin(), moved.end());
+        cells_.erase(child);
+        claims_.release(child);
+      }
+      claims_.claim(parent);
+      cells_[parent].frontier = std::move(frontier);
+      enqueue(parent);
+      ++snapshot_.coarsenings;
+      front_samples_ = 0;
+    } else {
+      for (const CellKey& child : children) enqueue(child);
+    }
+  }
+  working_level_ = coarsen ? level - 1 : level;
+}
+
+// Whether the children of `parent` can give way to it: none processed, none with claims below.
+bool Grower::canMerge(const CellKey& parent) {
+  for (const CellKey& child : parent.children()) {
+    if (claims_.claimedBelow(child)) return false;
+    if (claims_.claimed(child) && cells_[child].processed) return false;
+  }
+  return true;
+}
+
+}  // namespace plumb::reco::detail

@@ -1,0 +1,236 @@
+#pragma once
+// One grow's state, shared by the stages of the region grower (region_grower.h), each in a file
+// of its own:
+//   region_grower.cpp   the loop, the seed and the snapshots (its comment lists every step)
+//   grow_cells.cpp      cells, claims and the frontier; the adaptive resolution (section 3.6)
+//   grow_points.cpp     the growth point by point: the inlier test, refits (section 3.5)
+//   grow_bridges.cpp    bridges over gaps wider than r where the growth stops
+//   grow_final_fit.cpp  settling the points where segments meet, the robust final fit
+// Internal to reco/: growRegions is the only user.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <queue>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "engine/lod/lod_query.h"
+#include "reco/cell_claims.h"
+#include "reco/point_grid.h"
+#include "reco/region_grower.h"
+#include "reco/seed_planes.h"
+
+namespace plumb::reco::detail {
+
+using Clock = std::chrono::steady_clock;
+using lod::CellKey;
+
+// A point identity as one hashable number.
+inline std::uint64_t refKey(const lod::PointRef& ref) {
+  return (std::uint64_t{ref.node} << 32) | ref.index;
+}
+
+inline std::array<double, 3> array(const Eigen::Vector3d& p) {
+  return {p.x(), p.y(), p.z()};
+}
+
+// Which segment each octree point joined: one byte per point of every node the grow touched
+// (0 for none, s + 1 for segment s). A point has one identity at every level, so this is what
+// keeps a point from being counted twice when the grow switches levels.
+class Membership {
+ public:
+  explicit Membership(const lod::Octree& octree) : octree_(octree) {}
+  // 0 for none, s + 1 for segment s.
+  std::uint8_t flag(const lod::PointRef& ref) { return node(ref.node)[ref.index]; }
+  void assign(const lod::PointRef& ref, std::uint32_t segment) {
+    node(ref.node)[ref.index] = static_cast<std::uint8_t>(segment + 1);
+  }
+  void release(const lod::PointRef& ref) { node(ref.node)[ref.index] = 0; }
+  std::vector<std::vector<lod::PointRef>> members(std::size_t segments) const {
+    std::vector<std::vector<lod::PointRef>> result(segments);
+    for (const auto& [node, flags] : nodes_) {
+      for (std::uint32_t i = 0; i < flags.size(); ++i) {
+        if (flags[i] != 0) result[flags[i] - 1u].push_back({node, i});
+      }
+    }
+    for (auto& list : result) {
+      std::sort(list.begin(), list.end(), [](const lod::PointRef& a, const lod::PointRef& b) {
+        return std::tie(a.node, a.index) < std::tie(b.node, b.index);
+      });
+    }
+    return result;
+  }
+
+ private:
+  std::vector<std::uint8_t>& node(std::uint32_t index) {
+    auto [it, inserted] = nodes_.try_emplace(index);
+    if (inserted) it->second.assign(octree_.nodes()[index].point_count, 0);
+    return it->second;
+  }
+  const lod::Octree& octree_;
+  std::unordered_map<std::uint32_t, std::vector<std::uint8_t>> nodes_;
+};
+
+struct Assigned {
+  Eigen::Vector3d position;
+  std::uint32_t segment;
+};
+
+// The assigned points of one neighbour-grid cell, and which segments they belong to: a search
+// for "a point of each segment within r" skips the cells with no segment it has not yet seen,
+// which, where the points are dense, is nearly all of them.
+struct AssignedCell {
+  std::uint32_t segments = 0;  // bit s: a point of segment s is here
+  std::vector<Assigned> points;
+};
+
+struct CellState {
+  bool loaded = false;
+  bool processed = false;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<lod::PointRef> refs;
+  // Which segment each point joined during the growth (0 for none, s + 1 for segment s):
+  // Membership's flag, kept here because the growth asks it for every candidate and its
+  // neighbours. Claims are disjoint, so while this cell exists its points join only through it.
+  // (Settle and refine move points between segments afterwards in Membership only.)
+  std::vector<std::uint8_t> assigned;
+  // For a point that no segment took: the plane epoch of its last test, and the segments it was
+  // tested against then (bit s). A test repeated from another border point of one of those
+  // segments, before any plane has changed, would give the same answer, and is skipped: at full
+  // detail each rejected point has a dozen neighbours that reach it.
+  std::vector<std::uint32_t> rejected_epoch;
+  std::vector<std::uint32_t> rejected_by;
+  std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> by_grid;
+  std::vector<Assigned> frontier;  // assigned points within r of this cell, not yet expanded here
+};
+
+struct Candidate {
+  int segment = -1;             // the segment the point joins, -1 for none
+  double nearest_m = INFINITY;  // distance to the nearest assigned point (any segment)
+  std::uint32_t tested = 0;     // bit s: segment s has a point within r, and its plane was tested
+};
+
+class Grower {
+ public:
+  Grower(lod::NodeCache& cache, const GrowParameters& parameters, const GrowOptions& options,
+         const GrowProgress& progress);
+  GrowSnapshot run();
+
+ private:
+  // region_grower.cpp: the loop, the seed, the snapshots
+  struct SeedSphere {
+    std::vector<CellKey> cells;                             // claimed
+    std::vector<Eigen::Vector3d> points;                    // within r_s of the seed
+    std::vector<std::pair<CellKey, std::uint32_t>> origin;  // each point's cell and index there
+  };
+  std::uint32_t cellLevelFor(double width, std::uint32_t finest) const;
+  void claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
+  bool adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes);
+  void seed();
+  void fillSnapshot(bool final);
+  void publish();
+  GrowSnapshot finish(bool converged);
+
+  // grow_cells.cpp: cells, claims and the frontier; adaptive resolution (section 3.6)
+  CellState& loaded(const CellKey& key);
+  void enqueue(const CellKey& key);
+  void spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment);
+  std::optional<double> densityRatio() const;
+  bool adapt(const CellKey& key);
+  void replaceByChildren(const CellKey& key);
+  void lockLevel(std::uint32_t level);
+  void unlockLevel();
+  bool canMerge(const CellKey& parent);
+
+  // grow_points.cpp: the growth, point by point (section 3.5)
+  void addToGrid(const Eigen::Vector3d& p, std::uint32_t segment);
+  void assign(CellState& state, std::uint32_t index, std::uint32_t segment);
+  Candidate bestSegment(const Eigen::Vector3d& p, bool measure);
+  void observeSpacing(double nearest_m);
+  bool processCell(const CellKey& key);
+  bool continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment) const;
+  void refit(std::uint32_t segment);
+  void updateThreshold(std::uint32_t segment);
+
+  // grow_bridges.cpp: bridges over gaps wider than r
+  bool bridgeGaps();
+  using PointsByGridCell = std::unordered_map<GridKey, std::vector<Eigen::Vector3d>, GridKeyHash>;
+  bool bridge(std::uint32_t s, double reach);
+  std::vector<CellKey> cellsWithinReach(const PointsByGridCell& own, const PointGrid& coarse, double reach);
+
+  // grow_final_fit.cpp: settling and the robust final fit
+  void settle();
+  void rebuildAssigned();
+  std::uint32_t segmentsNear(const Eigen::Vector3d& p, std::uint32_t known) const;
+  std::uint32_t segmentsAround(const Eigen::Vector3d& p) const;
+  void refine();
+
+  static constexpr std::uint64_t kMinFrontSamples = 16;
+  // Cells at least this many r wide (seed): at the octree's own spacing they are 64 r wide.
+  static constexpr double kMinCellRadii = 8.0;
+  static constexpr std::uint32_t kNeverTested = ~std::uint32_t{0};
+  static constexpr std::size_t kMaxSegments = 32;  // segment masks are 32 bits wide
+  // segmentsAround: a point on a segment's border has the segment's points to one side, their
+  // mean 4 / (3 pi) = 0.42 r from it (a half disc); inside, a dozen points' mean strays about
+  // 0.18 r. 0.3 r keeps nine in ten inside and a fifth of those on the border.
+  static constexpr double kInsideOffset = 0.3;
+  static constexpr std::uint32_t kMinAroundPoints = 4;
+  static constexpr std::uint32_t kMinContinuityPoints = 4;
+  // A floor seen at grazing angles needs a bridge per scan line until it reaches denser ground;
+  // this bounds the work where a segment keeps finding a point or two beyond r.
+  static constexpr std::uint32_t kMaxBridges = 32;
+
+  const lod::Octree& octree_;
+  lod::CellPointIndex cell_points_;
+  GrowParameters parameters_;
+  GrowOptions options_;
+  const GrowProgress& progress_;
+  double radius_;  // r: the parameters', or wider where the data is sparser (adaptToDataSpacing)
+  PointGrid grid_;
+  CellClaims claims_;
+  Membership membership_;
+  Clock::time_point start_;
+  std::uint32_t base_level_ = 0;
+  std::uint32_t working_level_ = 0;  // the level new cells are claimed at
+  // How many levels finer than its cell's level a cell's points go (seed): 0 but where r is many
+  // times the spacing of the level d asks for (full detail).
+  std::uint32_t point_levels_ = 0;
+
+  GrowSnapshot snapshot_;
+  std::vector<PlaneRegression> regressions_;
+  std::vector<Plane> planes_;                                 // the regressions' planes, refitted as they grow
+  std::vector<std::uint64_t> fitted_count_;                   // regression size at the last refit
+  std::vector<double> thresholds_;                            // per segment: what a point may be off its plane
+  std::vector<std::uint32_t> bridges_left_;                   // per segment: bridges it may still try
+  std::vector<std::vector<Eigen::Vector3d>> segment_points_;  // for outlines, edges and corners
+  std::vector<std::vector<lod::PointRef>> segment_refs_;      // the same points' identities
+  std::vector<bool> grown_;
+  std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
+  std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found
+  std::unordered_map<CellKey, CellState, lod::CellKeyHash> cells_;
+  std::unordered_map<GridKey, AssignedCell, GridKeyHash> assigned_;
+  std::priority_queue<std::pair<double, CellKey>, std::vector<std::pair<double, CellKey>>, std::greater<>> queue_;
+  std::unordered_set<CellKey, lod::CellKeyHash> queued_;
+  std::optional<CellKey> processing_;  // the cell whose breadth-first search is running
+  std::optional<lod::Box3> processing_box_;
+  std::uint32_t plane_epoch_ = 0;  // counts the refits: a rejected point's test holds until the next
+  double neighbour_distance_sum_ = 0.0;
+  std::uint64_t neighbour_distance_count_ = 0;
+  double front_spacing_ = 0.0;
+  std::uint64_t front_samples_ = 0;
+
+  // Mark and finish (section 3.6): while a level is locked, its cells outside the marked
+  // parents wait.
+  std::optional<std::uint32_t> locked_level_;
+  std::unordered_set<CellKey, lod::CellKeyHash> marked_parents_;
+  std::vector<CellKey> waiting_;
+};
+
+}  // namespace plumb::reco::detail
