@@ -115,6 +115,40 @@ TEST(LodQuery, PointsInCellShareOutTheCoarserLevels) {
   }
 }
 
+// A coarse cell asked for a finer level's points holds exactly the points of levels 0..p that
+// lie in it (each once, from whichever node stores it): what the cells of level p inside it hold
+// together. The grow asks this at full detail, where its cells are coarser than its points.
+TEST(LodQuery, ACoarseCellGivesThePointsOfAFinerLevelInside) {
+  test::TempDirectory dir;
+  const auto octree = buildFloor(dir, "floor.plumb", 30.0, 200);
+  ASSERT_GE(octree->header().depth, 3u);
+  NodeCache cache(octree, 64 << 20);
+  CellPointIndex index(cache);
+  const std::uint32_t point_level = octree->header().depth;
+  for (std::uint32_t cell_level = 0; cell_level < point_level; ++cell_level) {
+    std::uint64_t expected = 0, found = 0;
+    for (const NodeInfo& node : octree->nodes()) {
+      if (node.key.level > point_level) continue;
+      const NodePoints points = octree->load(node);
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        if (octree->find(octree->cube().cellAt(points.position(i), cell_level)) != nullptr) ++expected;
+      }
+      if (node.key.level != cell_level) continue;
+      std::set<std::pair<std::uint32_t, std::uint32_t>> refs;
+      for (const auto& p : index.pointsInCell(node.key, point_level)) {
+        ASSERT_EQ(octree->cube().cellAt(p.position, cell_level), node.key);
+        ASSERT_LE(octree->nodes()[p.ref.node].key.level, point_level);
+        ASSERT_TRUE(refs.insert({p.ref.node, p.ref.index}).second) << "a point given twice";
+      }
+      found += refs.size();
+    }
+    // The points down to point_level in the cells of cell_level that have a node (where a branch
+    // ends in a leaf above cell_level there is no cell to ask): none lost, none twice.
+    EXPECT_EQ(found, expected) << "cells of level " << cell_level;
+    EXPECT_GT(found, 0u);
+  }
+}
+
 // The locality promise: a query's cost follows the region, not the cloud. Two floors of equal
 // density (100 points per square metre), 1 million points on 100 x 100 m and 25 million on
 // 500 x 500 m: the same 1 m query at the same spacing looks at as many nodes in both. The
