@@ -16,13 +16,13 @@ CellState& Grower::loaded(const CellKey& key) {
     const std::vector<lod::CellPoint> points = cell_points_.pointsInCell(key, key.level + point_levels_);
     for (const lod::CellPoint& p : points) {
       const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
-      state.by_grid[grid_.keyOf(position)].push_back(static_cast<std::uint32_t>(state.points.size()));
       state.points.push_back(position);
       state.refs.push_back(p.ref);
       state.assigned.push_back(membership_.flag(p.ref));
       state.rejected_epoch.push_back(kNeverTested);
       state.rejected_by.push_back(0);
     }
+    state.by_grid = GridIndex(grid_, state.points);
   }
   return state;
 }
@@ -34,21 +34,20 @@ void Grower::enqueue(const CellKey& key) {
 
 // Hands p to the frontier of every claimed cell within r of it other than the one being
 // processed (whose breadth-first search has p already), claiming cells where none is yet.
+// During the seed no cell is processed, and p's own cell gets it too.
 void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment) {
-  // Cells are at least 64 search radii wide: only the sides of the processed cell's box that p
-  // is within r of lead to a neighbour (during the seed, with no cell processed, all do).
+  // Cells are at least 8 search radii wide: only the sides of the box of p's cell that p is
+  // within r of lead to a neighbour (the other offsets land in p's cell or in a neighbour
+  // found already). The seed's claims are all of one level, so there p's cell is its owner.
+  const lod::Box3 box = processing_box_ ? *processing_box_ : octree_.cube().cellBox(*claims_.ownerAt(array(p)));
   std::array<std::array<int, 3>, 3> steps{};  // per axis: the offsets to try, -1, 0 or +1
   std::array<std::size_t, 3> step_count{};
   for (std::size_t a = 0; a < 3; ++a) {
     steps[a][step_count[a]++] = 0;
-    if (!processing_box_ || p[static_cast<Eigen::Index>(a)] - radius_ <= processing_box_->min[a]) {
-      steps[a][step_count[a]++] = -1;
-    }
-    if (!processing_box_ || p[static_cast<Eigen::Index>(a)] + radius_ >= processing_box_->max[a]) {
-      steps[a][step_count[a]++] = 1;
-    }
+    if (p[static_cast<Eigen::Index>(a)] - radius_ <= box.min[a]) steps[a][step_count[a]++] = -1;
+    if (p[static_cast<Eigen::Index>(a)] + radius_ >= box.max[a]) steps[a][step_count[a]++] = 1;
   }
-  if (step_count[0] * step_count[1] * step_count[2] == 1) return;
+  if (processing_ && step_count[0] * step_count[1] * step_count[2] == 1) return;
   std::array<CellKey, 27> seen;
   std::size_t count = 0;
   for (std::size_t iz = 0; iz < step_count[2]; ++iz) {

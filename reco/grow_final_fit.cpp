@@ -67,9 +67,9 @@ void Grower::rebuildAssigned() {
 std::uint32_t Grower::segmentsNear(const Eigen::Vector3d& p, std::uint32_t known) const {
   std::uint32_t mask = known;
   grid_.forEachAround(p, [&](const GridKey& key) {
-    const auto it = assigned_.find(key);
-    if (it == assigned_.end() || (it->second.segments & ~mask) == 0) return;
-    for (const Assigned& a : it->second.points) {
+    const AssignedCell* cell = assigned_.find(key);
+    if (cell == nullptr || (cell->segments & ~mask) == 0) return;
+    for (const Assigned& a : cell->points) {
       if (!((mask >> a.segment) & 1u) && (a.position - p).squaredNorm() <= radius_ * radius_) mask |= 1u << a.segment;
     }
   });
@@ -87,9 +87,9 @@ std::uint32_t Grower::segmentsAround(const Eigen::Vector3d& p) const {
   std::array<std::uint32_t, kMaxSegments> count{};
   std::uint32_t near = 0;
   grid_.forEachAround(p, [&](const GridKey& key) {
-    const auto it = assigned_.find(key);
-    if (it == assigned_.end()) return;
-    for (const Assigned& a : it->second.points) {
+    const AssignedCell* cell = assigned_.find(key);
+    if (cell == nullptr) return;
+    for (const Assigned& a : cell->points) {
       if ((a.position - p).squaredNorm() > radius_ * radius_) continue;
       near |= 1u << a.segment;
       sum[a.segment] += a.position - p;

@@ -44,11 +44,11 @@ Candidate Grower::bestSegment(const Eigen::Vector3d& p, bool measure) {
   double nearest2 = INFINITY;
   std::uint32_t seen_mask = 0;
   grid_.forEachAround(p, [&](const GridKey& key) {
-    const auto it = assigned_.find(key);
-    if (it == assigned_.end()) return;
-    const bool unseen = (it->second.segments & ~seen_mask) != 0;
+    const AssignedCell* cell = assigned_.find(key);
+    if (cell == nullptr) return;
+    const bool unseen = (cell->segments & ~seen_mask) != 0;
     if (!unseen && (!measure || grid_.squaredDistanceToCell(p, key) >= nearest2)) return;
-    for (const Assigned& a : it->second.points) {
+    for (const Assigned& a : cell->points) {
       if (!measure && ((seen_mask >> a.segment) & 1u)) continue;
       const double d2 = (a.position - p).squaredNorm();
       if (d2 > radius_ * radius_) continue;
@@ -93,9 +93,7 @@ bool Grower::processCell(const CellKey& key) {
   for (std::size_t next = 0; next < queue.size(); ++next) {
     const Assigned from = queue[next];
     grid_.forEachAround(from.position, [&](const GridKey& grid_key) {
-      const auto it = state.by_grid.find(grid_key);
-      if (it == state.by_grid.end()) return;
-      for (std::uint32_t i : it->second) {
+      for (std::uint32_t i : state.by_grid.at(grid_key)) {
         if (state.assigned[i]) continue;
         const double distance = (state.points[i] - from.position).norm();
         if (distance > radius_) continue;
@@ -153,9 +151,7 @@ bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, 
   std::uint32_t free_count = 0;
   std::uint32_t own_count = 0;
   grid_.forEachAround(p, [&](const GridKey& key) {
-    const auto it = state.by_grid.find(key);
-    if (it == state.by_grid.end()) return;
-    for (std::uint32_t j : it->second) {
+    for (std::uint32_t j : state.by_grid.at(key)) {
       const std::uint8_t owner = state.assigned[j];
       if (owner != 0 && owner != segment + 1) continue;
       if ((state.points[j] - p).squaredNorm() > radius_ * radius_) continue;

@@ -23,6 +23,8 @@
 
 #include "engine/lod/lod_query.h"
 #include "reco/cell_claims.h"
+#include "reco/grid_index.h"
+#include "reco/grid_map.h"
 #include "reco/point_grid.h"
 #include "reco/region_grower.h"
 #include "reco/seed_planes.h"
@@ -107,7 +109,7 @@ struct CellState {
   // detail each rejected point has a dozen neighbours that reach it.
   std::vector<std::uint32_t> rejected_epoch;
   std::vector<std::uint32_t> rejected_by;
-  std::unordered_map<GridKey, std::vector<std::uint32_t>, GridKeyHash> by_grid;
+  GridIndex by_grid;               // the points by neighbour-grid cell
   std::vector<Assigned> frontier;  // assigned points within r of this cell, not yet expanded here
 };
 
@@ -215,7 +217,7 @@ class Grower {
   std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
   std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found
   std::unordered_map<CellKey, CellState, lod::CellKeyHash> cells_;
-  std::unordered_map<GridKey, AssignedCell, GridKeyHash> assigned_;
+  GridMap<AssignedCell> assigned_;  // the segments' points by neighbour-grid cell
   std::priority_queue<std::pair<double, CellKey>, std::vector<std::pair<double, CellKey>>, std::greater<>> queue_;
   std::unordered_set<CellKey, lod::CellKeyHash> queued_;
   std::optional<CellKey> processing_;  // the cell whose breadth-first search is running

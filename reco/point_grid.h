@@ -24,6 +24,12 @@ struct GridKeyHash {
   }
 };
 
+// GridKeyHash with its entropy moved into the low bits, for tables that keep the low bits of a
+// hash (open addressing with a power-of-two size).
+inline std::size_t lowBitsHash(const GridKey& key) {
+  return static_cast<std::size_t>((GridKeyHash{}(key)*0x9E3779B97F4A7C15ULL) >> 17);
+}
+
 class PointGrid {
  public:
   // Positions are taken relative to `origin` (the seed): UTM coordinates divided by a few

@@ -192,8 +192,7 @@ void Grower::seed() {
     // Loaded before r was known: the neighbour grids of the cells anew.
     for (const CellKey& key : sphere.cells) {
       CellState& state = cells_[key];
-      state.by_grid.clear();
-      for (std::uint32_t i = 0; i < state.points.size(); ++i) state.by_grid[grid_.keyOf(state.points[i])].push_back(i);
+      state.by_grid = GridIndex(grid_, state.points);
     }
   }
   regressions_.resize(planes.size());

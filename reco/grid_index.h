@@ -1,0 +1,49 @@
+#pragma once
+// A fixed set of points bucketed by the cells of a PointGrid, for the neighbour searches of the
+// region grower inside one octree cell: which points lie in a grid cell, in ascending index order.
+// Built once (the points of an octree cell do not change during a grow); a lookup is one probe
+// sequence in a flat open-addressing table and the indices are contiguous, where a hash map of
+// vectors cost two or three cache misses per grid cell, 27 cells per search.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "reco/point_grid.h"
+
+namespace plumb::reco {
+
+class GridIndex {
+ public:
+  GridIndex() = default;
+  // Buckets `points` (at most 2^32 - 1) by grid.keyOf. O(n log n).
+  GridIndex(const PointGrid& grid, std::span<const Eigen::Vector3d> points);
+
+  // The indices of the points in grid cell `key`, ascending; empty when none.
+  std::span<const std::uint32_t> at(const GridKey& key) const {
+    if (slots_.empty()) return {};
+    for (std::size_t slot = lowBitsHash(key) & mask_;; slot = (slot + 1) & mask_) {
+      const Slot& s = slots_[slot];
+      if (s.end == 0) return {};
+      if (s.key == key) return {order_.data() + s.begin, order_.data() + s.end};
+    }
+  }
+
+ private:
+  struct Slot {
+    GridKey key{0, 0, 0};
+    std::uint32_t begin = 0;
+    std::uint32_t end = 0;  // 0: an empty slot (a bucket holds at least one point)
+  };
+  static std::size_t hash(const GridKey& key) {
+    // GridKeyHash spreads the keys; the multiply moves its entropy into the low bits the mask keeps.
+    return static_cast<std::size_t>((GridKeyHash{}(key)*0x9E3779B97F4A7C15ULL) >> 17);
+  }
+
+  std::vector<std::uint32_t> order_;  // point indices grouped by grid cell, ascending within one
+  std::vector<Slot> slots_;           // a power of two, at most half full
+  std::size_t mask_ = 0;
+};
+
+}  // namespace plumb::reco
