@@ -3,10 +3,16 @@
 //   plumb_bench_grow DIR   simulates the hall at 10 and 100 million points in DIR, builds their
 //                          octrees, and clicks the middle of its 6 x 3 m wall y = 0 from 3 m
 //                          (medium detail): time to the first snapshot and to convergence with
-//                          an empty node cache (cold) and again with the nodes cached (warm)
+//                          an empty node cache (cold) and again with the nodes cached (warm);
+//                          then simulates the room (5 mm noise) at 1, 10 and 100 million points
+//                          and clicks 0.1 m inside its corner (0, 0, 0) at high and at full
+//                          detail (t_p 15 mm): the same times, and the time per grown point
+//   plumb_bench_grow DIR --detail-only   the room part alone
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -28,19 +34,78 @@ void growOnce(lod::NodeCache& cache, const reco::GrowParameters& parameters, con
   if (label == nullptr) return;
   std::uint64_t points = 0;
   for (const auto& segment : result.segments) points += segment.points;
-  std::printf("  %s: first snapshot %.2f ms, converged %.2f ms; %zu segments, %llu points, level %u, %llu cells\n",
-              label, first_ms, result.elapsed_ms, result.segments.size(), static_cast<unsigned long long>(points),
-              result.level, static_cast<unsigned long long>(result.cells_visited));
+  std::printf(
+      "  %s: first snapshot %.2f ms, converged %.2f ms (%.2f us a grown point); %zu segments, %zu corners, %llu "
+      "points, level %u, %llu cells\n",
+      label, first_ms, result.elapsed_ms,
+      1000.0 * result.elapsed_ms / static_cast<double>(std::max<std::uint64_t>(points, 1)), result.segments.size(),
+      result.corners.size(), static_cast<unsigned long long>(points), result.level,
+      static_cast<unsigned long long>(result.cells_visited));
+}
+
+// Simulates `scene` with `points` at `noise_mm` (scanner seed 11) into `directory` and builds its octree; returns its
+// path.
+std::string buildScene(const std::filesystem::path& directory, const char* scene, std::uint64_t points, double noise_mm,
+                       const Eigen::Vector3d& offset, lod::BuildReport& report) {
+  reco::sim::SimulationRequest request;
+  request.scene = scene;
+  request.target_points = points;
+  request.scanner.noise_m = 0.001 * noise_mm;
+  request.scanner.seed = 11;
+  request.offset = offset;
+  request.ply_path = (directory / (std::string(scene) + ".ply")).string();
+  reco::sim::simulate(request);
+  lod::BuildOptions build;
+  build.sources = lod::fileSources({request.ply_path});
+  build.output = (directory / (std::string(scene) + ".plumb")).string();
+  report = lod::buildOctree(build);
+  std::filesystem::remove(request.ply_path);
+  return build.output;
+}
+
+// High and full detail at a room corner, cold and warm, at 1, 10 and 100 million points.
+void benchDetail(const std::filesystem::path& directory) {
+  const Eigen::Vector3d offset(512000, 5403000, 250);
+  const Eigen::Vector3d click = offset + Eigen::Vector3d(0.1, 0.1, 0.1);
+  for (const std::uint64_t points : {1'000'000ull, 10'000'000ull, 100'000'000ull}) {
+    lod::BuildReport report;
+    const std::string path = buildScene(directory, "room", points, 5.0, offset, report);
+    const auto octree = lod::Octree::open(path);
+    const reco::ParameterConstants constants{.plane_threshold_m = 0.015};
+    const double seed_radius = reco::parametersForView(reco::viewFromDistance(click, 3.0), constants).seed_radius_m;
+    for (const reco::Detail detail : {reco::Detail::kHigh, reco::Detail::kFull}) {
+      const double full_density = std::pow(octree->spacing(octree->header().depth), -3.0);
+      const reco::GrowParameters parameters = reco::parametersForDensity(
+          click, reco::densityForDetail(detail, constants, full_density), seed_radius, constants);
+      std::printf("room, 5 mm noise, %llu points (%llu nodes), click 0.1 m inside corner (0, 0, 0), %s detail:\n",
+                  static_cast<unsigned long long>(report.points), static_cast<unsigned long long>(report.nodes),
+                  detail == reco::Detail::kFull ? "full" : "high");
+      {
+        lod::NodeCache warm_up(octree, std::size_t{1} << 30);  // one-time costs, as below
+        growOnce(warm_up, parameters, nullptr);
+      }
+      lod::NodeCache cache(octree, std::size_t{4} << 30);
+      growOnce(cache, parameters, "cold");
+      growOnce(cache, parameters, "warm");
+      std::fflush(stdout);
+    }
+    std::filesystem::remove(path);
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: plumb_bench_grow DIRECTORY\n");
+  const bool detail_only = argc == 3 && std::strcmp(argv[2], "--detail-only") == 0;
+  if (argc != 2 && !detail_only) {
+    std::fprintf(stderr, "usage: plumb_bench_grow DIRECTORY [--detail-only]\n");
     return 2;
   }
   const std::filesystem::path directory = argv[1];
+  if (detail_only) {
+    benchDetail(directory);
+    return 0;
+  }
   const Eigen::Vector3d offset(512000, 5403000, 250);
   // The middle of the hall's y = 0 wall (6 m long, 3 m high), in world coordinates.
   const Eigen::Vector3d click = offset + Eigen::Vector3d(3.0, 0.0, 1.5);
@@ -75,5 +140,6 @@ int main(int argc, char** argv) {
     growOnce(cache, parameters, "warm");
     std::filesystem::remove(build.output);
   }
+  benchDetail(directory);
   return 0;
 }
