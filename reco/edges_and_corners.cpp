@@ -2,11 +2,12 @@
 //
 //   1. For every pair of segments whose valid planes meet at more than min_angle: intersect
 //      them (in coordinates relative to the segments' centroids, exact at UTM scale).
-//   2. Gather each segment's points within 2r of the line; with at least min_near_points from
+//   2. Gather each segment's points near the line (within 2r, or 4 RMS of its plane where
+//      wider: at full detail r may be about the noise); with at least min_near_points from
 //      each, project them onto the line: the 5th to 95th percentile is the support range and
 //      gives the edge's endpoints.
 //   3. For every triple of segments whose pairs are all non-parallel, solve the three planes
-//      for the corner; viable when each segment reaches it (a point within 2r: a corner of a
+//      for the corner; viable when each segment reaches it (a point near it: a corner of a
 //      room is at the very end of its three walls, where each has only a quarter disc of
 //      points). Its support is the three regression variances.
 
@@ -65,7 +66,14 @@ std::optional<Eigen::Vector3d> cornerOfPlanes(const Plane& a, const Plane& b, co
 Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const FeatureOptions& options) {
   Features features;
   const double min_sine = std::sin(options.min_angle_deg * M_PI / 180.0);
-  const double near = 2.0 * options.search_radius;
+  // Near a line or a corner: within 2r, or within noise_near_sigmas times the plane's RMS where
+  // that is wider. At full detail on a dense scan r is a few point spacings, about the noise
+  // (a 100 M-point room at 5 mm noise: r 5.6 mm), and where three planes meet within the noise
+  // each point went to one of them: no segment kept a point within 2r of the corner, and the
+  // click at the corner found none.
+  const auto nearOf = [&](std::uint32_t s) {
+    return std::max(2.0 * options.search_radius, options.noise_near_sigmas * segments[s].plane.rms);
+  };
   const auto n = static_cast<std::uint32_t>(segments.size());
   auto usable = [&](std::uint32_t s) { return segments[s].plane.valid && !segments[s].points.empty(); };
 
@@ -76,6 +84,7 @@ Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const Fe
       std::vector<double> along;
       bool both_near = true;
       for (std::uint32_t s : {i, j}) {
+        const double near = nearOf(s);
         std::uint32_t count = 0;
         for (const Eigen::Vector3d& p : segments[s].points) {
           const Eigen::Vector3d offset = p - origin;
@@ -103,9 +112,11 @@ Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const Fe
             cornerOfPlanes(segments[i].plane, segments[j].plane, segments[k].plane, options.min_angle_deg);
         if (!found) continue;
         const Eigen::Vector3d& corner = *found;
-        // Each segment must reach the corner: a point of it (a vertex of its outline) within 2r.
+        // Each segment must reach the corner: a point of it (a vertex of its outline) within its near distance
+        // (nearOf).
         const std::array<std::uint32_t, 3> trio{i, j, k};
         const bool all_near = std::all_of(trio.begin(), trio.end(), [&](std::uint32_t s) {
+          const double near = nearOf(s);
           return std::any_of(segments[s].points.begin(), segments[s].points.end(),
                              [&](const Eigen::Vector3d& p) { return (p - corner).squaredNorm() <= near * near; });
         });

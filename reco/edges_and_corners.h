@@ -24,7 +24,7 @@ struct Edge {
   Eigen::Vector3d start;             // the support range: from the 5th ...
   Eigen::Vector3d end;               // ... to the 95th percentile of the nearby points along the line
   Eigen::Vector3d direction;         // unit, from start to end
-  std::uint32_t support_points = 0;  // points within 2r of the line, both segments together
+  std::uint32_t support_points = 0;  // points near the line (FeatureOptions), both segments together
 };
 
 struct Corner {
@@ -34,9 +34,10 @@ struct Corner {
 };
 
 struct FeatureOptions {
-  double search_radius = 0.05;   // r of the grow: points within 2r of a line or corner count as near
-  double min_angle_deg = 10.0;   // planes closer to parallel than this do not intersect
-  double low_percentile = 0.05;  // the support range along an edge
+  double search_radius = 0.05;     // r of the grow: points within 2r of a line or corner count as near
+  double noise_near_sigmas = 4.0;  // or within this many times the segment's plane RMS, where wider
+  double min_angle_deg = 10.0;     // planes closer to parallel than this do not intersect
+  double low_percentile = 0.05;    // the support range along an edge
   double high_percentile = 0.95;
   std::uint32_t min_near_points = 5;  // per segment, to call it near an edge's line
 };

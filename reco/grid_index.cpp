@@ -26,6 +26,12 @@ GridIndex::GridIndex(const PointGrid& grid, std::span<const Eigen::Vector3d> poi
     buckets.back().end = i + 1;
   }
   if (buckets.empty()) return;
+  std::vector<std::uint32_t> sizes;
+  sizes.reserve(buckets.size());
+  for (const Slot& bucket : buckets) sizes.push_back(bucket.end - bucket.begin);
+  const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+  std::nth_element(sizes.begin(), middle, sizes.end());
+  median_cell_points_ = *middle;
   slots_.assign(std::bit_ceil(2 * buckets.size()), Slot{});
   mask_ = slots_.size() - 1;
   for (const Slot& bucket : buckets) {

@@ -20,6 +20,9 @@ class GridIndex {
   // Buckets `points` (at most 2^32 - 1) by grid.keyOf. O(n log n).
   GridIndex(const PointGrid& grid, std::span<const Eigen::Vector3d> points);
 
+  // The median number of points in the grid cells that hold any (0 for no point).
+  std::uint32_t medianCellPoints() const { return median_cell_points_; }
+
   // The indices of the points in grid cell `key`, ascending; empty when none.
   std::span<const std::uint32_t> at(const GridKey& key) const {
     if (slots_.empty()) return {};
@@ -44,6 +47,7 @@ class GridIndex {
   std::vector<std::uint32_t> order_;  // point indices grouped by grid cell, ascending within one
   std::vector<Slot> slots_;           // a power of two, at most half full
   std::size_t mask_ = 0;
+  std::uint32_t median_cell_points_ = 0;
 };
 
 }  // namespace plumb::reco

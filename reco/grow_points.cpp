@@ -92,11 +92,11 @@ bool Grower::processCell(const CellKey& key) {
   bool added = false;
   for (std::size_t next = 0; next < queue.size(); ++next) {
     const Assigned from = queue[next];
-    grid_.forEachAround(from.position, [&](const GridKey& grid_key) {
+    state.grid.forEachAround(from.position, [&](const GridKey& grid_key) {
       for (std::uint32_t i : state.by_grid.at(grid_key)) {
         if (state.assigned[i]) continue;
         const double distance = (state.points[i] - from.position).norm();
-        if (distance > radius_) continue;
+        if (distance > state.radius) continue;
         if (state.rejected_epoch[i] == plane_epoch_ && ((state.rejected_by[i] >> from.segment) & 1u)) {
           ++snapshot_.tests_skipped;
           continue;
@@ -150,11 +150,11 @@ bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, 
   double own_sum = 0.0;
   std::uint32_t free_count = 0;
   std::uint32_t own_count = 0;
-  grid_.forEachAround(p, [&](const GridKey& key) {
+  state.grid.forEachAround(p, [&](const GridKey& key) {
     for (std::uint32_t j : state.by_grid.at(key)) {
       const std::uint8_t owner = state.assigned[j];
       if (owner != 0 && owner != segment + 1) continue;
-      if ((state.points[j] - p).squaredNorm() > radius_ * radius_) continue;
+      if ((state.points[j] - p).squaredNorm() > state.radius * state.radius) continue;
       const double d = plane.signedDistance(state.points[j]);
       if (std::abs(d) >= window) continue;
       if (owner == 0) {

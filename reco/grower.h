@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <queue>
+#include <span>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -109,7 +110,11 @@ struct CellState {
   // detail each rejected point has a dozen neighbours that reach it.
   std::vector<std::uint32_t> rejected_epoch;
   std::vector<std::uint32_t> rejected_by;
-  GridIndex by_grid;               // the points by neighbour-grid cell
+  // The cell's own search radius and neighbour grid (indexCell): r, or less where the cell's
+  // points are much denser than the seed's (at full detail, the surfaces nearer the scanner).
+  double radius = 0.0;
+  PointGrid grid{Eigen::Vector3d::Zero(), 1.0};
+  GridIndex by_grid;               // the points by cell of `grid`
   std::vector<Assigned> frontier;  // assigned points within r of this cell, not yet expanded here
 };
 
@@ -134,6 +139,9 @@ class Grower {
   };
   std::uint32_t cellLevelFor(double width, std::uint32_t finest) const;
   void claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
+  double seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
+                        double window) const;
+  std::vector<SeedPlane> seedPlanesMeasuringThreshold(std::span<const Eigen::Vector3d> points, SeedOptions options);
   bool adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes);
   void seed();
   void fillSnapshot(bool final);
@@ -142,6 +150,7 @@ class Grower {
 
   // grow_cells.cpp: cells, claims and the frontier; adaptive resolution (section 3.6)
   CellState& loaded(const CellKey& key);
+  void indexCell(CellState& state) const;
   void enqueue(const CellKey& key);
   void spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment);
   std::optional<double> densityRatio() const;
@@ -177,6 +186,10 @@ class Grower {
   static constexpr std::uint64_t kMinFrontSamples = 16;
   // Cells at least this many r wide (seed): at the octree's own spacing they are 64 r wide.
   static constexpr double kMinCellRadii = 8.0;
+  // A cell's own search radius is at least r / kMaxRadiusShrink (indexCell).
+  static constexpr double kMaxRadiusShrink = 8.0;
+  // The seed planes' noise is measured on at least this many inliers, else on patches alone.
+  static constexpr std::size_t kMinNoiseResiduals = 30;
   static constexpr std::uint32_t kNeverTested = ~std::uint32_t{0};
   static constexpr std::size_t kMaxSegments = 32;  // segment masks are 32 bits wide
   // segmentsAround: a point on a segment's border has the segment's points to one side, their
@@ -194,7 +207,8 @@ class Grower {
   GrowParameters parameters_;
   GrowOptions options_;
   const GrowProgress& progress_;
-  double radius_;  // r: the parameters', or wider where the data is sparser (adaptToDataSpacing)
+  double radius_;                  // r: the parameters', or wider where the data is sparser (adaptToDataSpacing)
+  bool radius_from_data_ = false;  // r follows the seed's data spacing, not d's
   PointGrid grid_;
   CellClaims claims_;
   Membership membership_;

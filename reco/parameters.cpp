@@ -5,7 +5,8 @@
 //   2. r_s = 10 % of the screen width at that depth (pixel size * viewport width * 0.1).
 //   3. d from the pixel size, logarithmic between the near and the far constants.
 //   4. r = 2 mean spacings at density d, the spacing being d^(-1/3).
-//   5. t_p is the user's setting.
+//   5. t_p is the user's setting, or by default measured by the grower from the seed planes'
+//      noise (noise_threshold.h).
 
 #include "reco/parameters.h"
 
@@ -51,6 +52,7 @@ GrowParameters parametersForDensity(const Eigen::Vector3d& seed, double density,
   p.spacing_m = std::cbrt(1.0 / density);
   p.search_radius_m = c.search_radius_spacings * p.spacing_m;
   p.plane_threshold_m = c.plane_threshold_m;
+  p.plane_threshold_from_data = c.plane_threshold_from_data;
   p.pixel_size_m = 0.0;
   return p;
 }

@@ -28,6 +28,9 @@ struct ParameterConstants {
   double far_pixel_m = 0.02;            // 20 mm per pixel: a facade seen from about 40 m
   double search_radius_spacings = 2.0;  // r: this many mean point spacings at density d
   double plane_threshold_m = 0.02;      // t_p: the user's precision setting
+  // Whether t_p follows the noise measured on the seed planes (noise_threshold.h), starting
+  // from plane_threshold_m; false when the user sets t_p.
+  bool plane_threshold_from_data = true;
 };
 
 struct GrowParameters {
@@ -36,8 +39,9 @@ struct GrowParameters {
   double density;            // d, points per cubic metre
   double spacing_m;          // the mean point spacing at density d: d^(-1/3)
   double search_radius_m;    // r
-  double plane_threshold_m;  // t_p
-  double pixel_size_m;       // the projected size of a pixel at the picked point, for display
+  double plane_threshold_m;  // t_p, or where plane_threshold_from_data the start of its estimate
+  bool plane_threshold_from_data = false;
+  double pixel_size_m;  // the projected size of a pixel at the picked point, for display
 };
 
 // The view of a 60-degree perspective camera on a 1920 x 1080 screen looking at `picked` from

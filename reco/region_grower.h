@@ -96,6 +96,8 @@ struct GrowSnapshot {
   std::uint64_t coarsenings = 0;       // groups of cells replaced by their parent
   double data_spacing_m = 0;           // median nearest-neighbour distance of the seed points
   double search_radius_m = 0;          // r as used: the parameters', wider where the data is sparser
+  double plane_threshold_m = 0;        // t_p as used: the parameters', or measured from the data
+  double noise_sigma_m = 0;            // the seed planes' noise where t_p was measured, else 0
   double front_spacing_m = 0;          // s_obs: the running nearest-neighbour spacing of the growth front
   std::uint64_t cells_visited = 0;     // cell visits (a cell is visited again when a neighbour grows to it)
   std::uint64_t points_tested = 0;     // candidate point-to-plane tests

@@ -7,7 +7,8 @@
 //      the door leaf 0.12 m behind the wall outweighed the floor and took the third slot, and
 //      the corner was lost.
 //   3. Remove its inliers from the candidates and repeat.
-//   4. Rank by inlier count; with drop_unstable, keep only Otsu's high class of the counts.
+//   4. Rank by inlier count; with drop_unstable, keep only Otsu's high class of the counts, and
+//      the plane of the picked point.
 
 #include "reco/seed_planes.h"
 
@@ -59,7 +60,20 @@ std::vector<SeedPlane> findSeedPlanes(std::span<const Eigen::Vector3d> points, c
   if (options.drop_unstable) {
     std::vector<double> counts;
     for (const SeedPlane& plane : planes) counts.push_back(static_cast<double>(plane.inliers.size()));
-    planes.resize(otsuHighClassSize(counts));
+    const std::size_t kept = otsuHighClassSize(counts);
+    std::optional<std::size_t> picked;
+    if (options.picked) {
+      double nearest = options.threshold;
+      for (std::size_t i = 0; i < planes.size(); ++i) {
+        const double d = planes[i].plane.distance(*options.picked);
+        if (d < nearest) {
+          nearest = d;
+          picked = i;
+        }
+      }
+    }
+    if (picked && *picked >= kept) std::swap(planes[kept], planes[*picked]);  // the picked plane stays
+    planes.resize(picked && *picked >= kept ? kept + 1 : kept);
   }
   return planes;
 }

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -25,6 +26,10 @@ struct SeedOptions {
   bool drop_unstable = true;          // Otsu's threshold on the inlier counts
   std::uint64_t seed = 1;             // of the random generator: the same points give the same planes
   std::uint32_t max_iterations = 500;
+  // The point the user picked: the plane it lies on (the nearest within the threshold) is never
+  // dropped as unstable. Its surface may have the fewest seed points (the near face of a thin
+  // wall whose far face a scanner saw closer), but it is the one the user asked for.
+  std::optional<Eigen::Vector3d> picked;
 };
 
 struct SeedPlane {

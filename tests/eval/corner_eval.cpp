@@ -5,7 +5,8 @@
 //
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
 //                      [--details low,medium,high,full] [--jobs N] [--stations N]
-//                      [--grow-limit-s S] [--tp-sigmas K] [--noise-sigmas N] [--full-repetitions N]
+//                      [--grow-limit-s S] [--tp-sigmas K | --tp-from-data] [--noise-sigmas N]
+//                      [--full-repetitions N]
 //                      [--refine-c C] [--print-segments]
 //
 // For each noise level and repetition (the scanner's seed is the repetition, so reruns agree):
@@ -95,11 +96,13 @@ const DetailLevel& detailLevel(const std::string& name) {
   throw Error("unknown detail '" + name + "': choose low, medium, high or full");
 }
 
-// The grow's parameters for a click at `seed`, with the plane threshold `plane_threshold_m`.
+// The grow's parameters for a click at `seed`, with the plane threshold `plane_threshold_m`, or
+// with the grower's own measure of it where `tp_from_data` (plumb grow without --tp).
 reco::GrowParameters parametersFor(const DetailLevel& level, const Eigen::Vector3d& seed, const lod::Octree& octree,
-                                   double plane_threshold_m) {
+                                   double plane_threshold_m, bool tp_from_data) {
   reco::ParameterConstants constants;
   constants.plane_threshold_m = plane_threshold_m;
+  constants.plane_threshold_from_data = tp_from_data;
   const reco::GrowParameters view =
       reco::parametersForView(reco::viewFromDistance(seed, level.view_distance_m), constants);
   if (!level.all_points) return view;
@@ -340,6 +343,7 @@ struct Settings {
   // larger of the automatic parameters' 20 mm and K x the noise; 0: 20 mm at every noise level,
   // which cuts off most of a 20 or 30 mm noise's points and stops the grow early.
   double tp_sigmas = 3.0;
+  bool tp_from_data = false;  // the grower measures t_p (plumb grow's default); tp_sigmas unused
   double noise_sigmas = reco::GrowOptions{}.noise_sigmas;
   double refine_c = reco::GrowOptions{}.refine_c;
   bool print_segments = false;
@@ -458,10 +462,12 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
       if (detail == "full" && settings.full_repetitions && repetition >= *settings.full_repetitions) continue;
       // The seed radius does not depend on the click's exact place: the camera distance sets it.
       const double seed_radius_m =
-          parametersFor(detailLevel(detail), corner.position, *octree, plane_threshold_m).seed_radius_m;
+          parametersFor(detailLevel(detail), corner.position, *octree, plane_threshold_m, settings.tp_from_data)
+              .seed_radius_m;
       // The box planes' normals point into the room, so their sum is the inward diagonal.
       const Eigen::Vector3d click = corner.position + std::min(kClickInset, seed_radius_m / 3.0) * inward;
-      const reco::GrowParameters parameters = parametersFor(detailLevel(detail), click, *octree, plane_threshold_m);
+      const reco::GrowParameters parameters =
+          parametersFor(detailLevel(detail), click, *octree, plane_threshold_m, settings.tp_from_data);
       reco::GrowOptions options;
       options.random_seed = repetition;
       options.noise_sigmas = settings.noise_sigmas;
@@ -729,6 +735,9 @@ int main(int argc, char** argv) {
                  "Plane threshold t_p as this many noise sigmas, never below the automatic 20 mm (0: always 20 mm)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  app.add_flag("--tp-from-data", settings.tp_from_data,
+               "t_p measured by the grower from the noise at each click, as plumb grow does without --tp "
+               "(--tp-sigmas unused)");
   app.add_option("--full-repetitions", settings.full_repetitions,
                  "Run full detail on the first N repetitions only (default: all)");
   app.add_option("--noise-sigmas", settings.noise_sigmas,

@@ -182,6 +182,34 @@ TEST(RegionGrower, TheTwoFacesOfAThickWallStayApart) {
   EXPECT_TRUE(holdsPatch(single.segments[0].points, face));
 }
 
+//        z
+//        |  wall x = 0, 3 x 2.5 m
+//        +------ y
+//       /  floor z = 0, 3 x 3 m          noise 30 mm normal to each
+//      x
+// With t_p from the data (the default), the grow measures the noise and takes 3 sigma as t_p:
+// two segments grow and meet at an edge. With the user's 20 mm (a threshold under the noise) t_p
+// stays, and nothing is measured.
+TEST(RegionGrower, ThePlaneThresholdFollowsTheNoiseMeasuredAtTheSeed) {
+  test::TempDirectory dir;
+  const std::vector<Patch> patches{{kUtm, {0, 3, 0}, {0, 0, 2.5}}, {kUtm, {3, 0, 0}, {0, 3, 0}}};
+  const auto octree = buildPatches(dir, patches, 60'000, 0.03);
+  lod::NodeCache cache(octree, 256 << 20);
+  GrowParameters parameters = parametersForDensity(kUtm + Eigen::Vector3d(0.3, 1.5, 0.3), 1.0 / std::pow(0.05, 3), 0.6);
+  ASSERT_TRUE(parameters.plane_threshold_from_data) << "the default";
+  const GrowSnapshot measured = growRegions(cache, parameters);
+  std::printf("t_p %.1f mm from a noise of %.1f mm\n", 1e3 * measured.plane_threshold_m, 1e3 * measured.noise_sigma_m);
+  EXPECT_NEAR(measured.noise_sigma_m, 0.03, 0.006);
+  EXPECT_NEAR(measured.plane_threshold_m, 3.0 * measured.noise_sigma_m, 1e-12);
+  ASSERT_EQ(measured.segments.size(), 2u);
+  EXPECT_EQ(measured.edges.size(), 1u);
+
+  parameters.plane_threshold_from_data = false;
+  const GrowSnapshot given = growRegions(cache, parameters);
+  EXPECT_EQ(given.plane_threshold_m, 0.02);
+  EXPECT_EQ(given.noise_sigma_m, 0.0);
+}
+
 //   +------------------+
 //   |  wall, 4 x 2.5 m |   4 mm noise along its normal: the growth's threshold, about 2 sigma,
 //   |       seed       |   turns away the noise's tails (5 %); the robust final fit

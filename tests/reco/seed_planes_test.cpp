@@ -60,6 +60,25 @@ TEST(SeedPlanes, OtsuDropsAnUnstablePlane) {
   EXPECT_EQ(findSeedPlanes(points, options).size(), 2u);
 }
 
+// The same small patch, picked by the user: it is the surface asked for, and stays.
+TEST(SeedPlanes, ThePickedPlaneIsNeverDroppedAsUnstable) {
+  Random random(6);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 3000; ++i) points.emplace_back(random.uniform(), random.uniform(), 0.001 * random.gaussian());
+  for (int i = 0; i < 200; ++i) {
+    points.emplace_back(0.5 + 0.1 * random.uniform(), 0.5 + 0.001 * random.gaussian(), 0.2 + 0.1 * random.uniform());
+  }
+  SeedOptions options;
+  options.threshold = 0.005;
+  options.min_inlier_fraction = 0.02;
+  options.picked = Eigen::Vector3d(0.55, 0.5, 0.25);
+  const auto planes = findSeedPlanes(points, options);
+  ASSERT_EQ(planes.size(), 2u);
+  EXPECT_LT(planes[1].plane.distance(*options.picked), 0.005);
+  options.picked = Eigen::Vector3d(0.3, 0.3, 0.0);  // on the big plane: the patch goes
+  EXPECT_EQ(findSeedPlanes(points, options).size(), 1u);
+}
+
 //        z
 //        |   wall x = 0 (y, z in [0, 1]); door leaf x = -0.12 (y, z in [0.5, 1]) behind it
 //        |   wall y = 0 (x in [0, 1], z in [0, 1])

@@ -55,14 +55,16 @@ Command addGrowCommand(CLI::App& plumb) {
       ->check(CLI::IsMember({"low", "medium", "high", "full"}))
       ->excludes(distance)
       ->excludes(camera_option);
-  sub->add_option("--tp", options->plane_threshold, "Plane threshold t_p in metres (the precision of the planes)")
-      ->check(finiteIn(1e-5, 10))
-      ->capture_default_str();
+  CLI::Option* tp_option =
+      sub->add_option("--tp", options->plane_threshold,
+                      "Plane threshold t_p in metres (the precision of the planes); by default 3 times the noise "
+                      "measured on the seed planes where that is more than 0.02")
+          ->check(finiteIn(1e-5, 10));
   sub->add_option("--json", options->json, "Write the result as JSON (docs/grow-json.md)");
   sub->add_option("--gltf", options->gltf,
                   "Write the segments' polygons, edges and corners as a glTF 2.0 binary (.glb)");
 
-  auto run = [options]() -> int {
+  auto run = [options, tp_option]() -> int {
     const Eigen::Vector3d seed = parseVector3(options->seed, "--seed");
     // Read the camera before any work: a bad file is reported at once.
     reco::ViewAtClick view = reco::viewFromDistance(seed, options->view_distance);
@@ -77,6 +79,7 @@ Command addGrowCommand(CLI::App& plumb) {
 
     reco::ParameterConstants constants;
     constants.plane_threshold_m = options->plane_threshold;
+    constants.plane_threshold_from_data = tp_option->count() == 0;
     reco::GrowParameters parameters = reco::parametersForView(view, constants);
     if (!options->detail.empty()) {
       const reco::Detail detail = options->detail == "low"      ? reco::Detail::kLow
@@ -96,8 +99,15 @@ Command addGrowCommand(CLI::App& plumb) {
     std::printf("grew %zu segment%s around %.3f %.3f %.3f at level %u (spacing %.4f m)\n", result.segments.size(),
                 result.segments.size() == 1 ? "" : "s", seed.x(), seed.y(), seed.z(), result.level,
                 octree->spacing(result.level));
-    std::printf("  parameters  r_s %.3f m, d %.0f points/m^3, r %.4f m, t_p %.4f m\n", parameters.seed_radius_m,
-                parameters.density, parameters.search_radius_m, parameters.plane_threshold_m);
+    char threshold[96];
+    if (parameters.plane_threshold_from_data) {
+      std::snprintf(threshold, sizeof threshold, "t_p %.4f m (the noise measured: %.2f mm)", result.plane_threshold_m,
+                    result.noise_sigma_m * 1e3);
+    } else {
+      std::snprintf(threshold, sizeof threshold, "t_p %.4f m", result.plane_threshold_m);
+    }
+    std::printf("  parameters  r_s %.3f m, d %.0f points/m^3, r %.4f m, %s\n", parameters.seed_radius_m,
+                parameters.density, parameters.search_radius_m, threshold);
     std::printf("  grown at    levels %u to %u (%s refinements, %s coarsenings), r %.4f m (data spacing %.4f m)\n",
                 result.coarsest_level, result.finest_level, withThousands(result.refinements).c_str(),
                 withThousands(result.coarsenings).c_str(), result.search_radius_m, result.data_spacing_m);

@@ -49,9 +49,10 @@ Command addViewCommand(CLI::App& plumb) {
                   "Render the cloud at this fraction of the window's resolution (default 0.5 on the CPU, else 1)")
       ->check(CLI::Range(0.1, 1.0));
   sub->add_option("--tp", options->plane_threshold_m,
-                  "The Grow tool's plane threshold t_p in metres, about 3 x the scanner's noise (the panel changes it)")
+                  "The Grow tool's plane threshold t_p in metres, about 3 x the scanner's noise (the panel changes "
+                  "it); by default each click measures the noise")
       ->check(CLI::Range(0.0005, 1.0))
-      ->capture_default_str();
+      ->each([options](const std::string&) { options->plane_threshold_from_data = false; });
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   sub->add_flag("!--fixed-quality", options->adaptive_quality,
                 "Render a moving view as a still one (by default it drops resolution and points to keep 30 fps)");

@@ -76,6 +76,7 @@ Viewer::Viewer(const ViewerOptions& options)
   adaptive_quality_ = options.adaptive_quality;
   settings_.selection.point_budget = options.budget_points > 0 ? options.budget_points : (cpu ? 1'000'000 : 5'000'000);
   grow_panel_.plane_threshold_m = static_cast<float>(options.plane_threshold_m);
+  grow_panel_.threshold_from_data = options.plane_threshold_from_data;
   jobs_.setWakeUp([] { Window::wakeUp(); });
   if (!options.script.empty()) script_.emplace(readSessionScript(options.script));
   openProject();
@@ -671,6 +672,7 @@ std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3
   if (!view) return std::nullopt;
   reco::ParameterConstants constants;
   constants.plane_threshold_m = grow_panel_.plane_threshold_m;
+  constants.plane_threshold_from_data = grow_panel_.threshold_from_data;
   reco::GrowParameters parameters = reco::parametersForView(*view, constants);
   if (grow_panel_.detail > 0) {
     const lod::Octree& octree = *cloud_->octree;

@@ -61,7 +61,8 @@ struct LoadProgress {
 
 // The grow tool's panel values: the user's settings and what the last click derived.
 struct GrowPanel {
-  float plane_threshold_m = 0.02f;  // t_p
+  float plane_threshold_m = 0.02f;  // t_p where the user sets it
+  bool threshold_from_data = true;  // t_p from the noise measured at each click instead
   int detail = 0;                   // 0 from the view, then low, medium, high, full
   std::optional<reco::GrowParameters> last;
   std::optional<GrowUpdate> last_update;  // its newest snapshot's statistics

@@ -25,10 +25,11 @@ struct ViewerOptions {
   std::string dump_scene;              // the scene as JSON when the viewer closes
   std::optional<view::Camera> camera;  // the first view; default: the demo's or an iso view of the cloud
   int width = 1280, height = 720;
-  double plane_threshold_m = 0.02;  // the Grow tool's t_p to begin with (its panel changes it)
-  std::string gpu;                  // DeviceChoice::prefer; empty: PLUMB_GPU or automatic
-  std::uint64_t budget_points = 0;  // 0: the device's default (lower on the CPU)
-  double render_scale = 0.0;        // 0: the device's default (half resolution on the CPU)
+  double plane_threshold_m = 0.02;        // the Grow tool's t_p to begin with (its panel changes it)
+  bool plane_threshold_from_data = true;  // t_p from the noise of each click's seed planes
+  std::string gpu;                        // DeviceChoice::prefer; empty: PLUMB_GPU or automatic
+  std::uint64_t budget_points = 0;        // 0: the device's default (lower on the CPU)
+  double render_scale = 0.0;              // 0: the device's default (half resolution on the CPU)
   // Time the splat and the resolve of each moving frame on the GPU and print their medians at
   // the end of a scripted session (waits for each such frame: the frame rate drops a little).
   bool profile = false;

@@ -163,8 +163,12 @@ void Viewer::drawDrawingToolState() {
 void Viewer::drawGrowPanel() {
   placeInColumn(false);
   ImGui::Begin("Grow", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::Checkbox("t_p from the data", &grow_panel_.threshold_from_data);
+  tooltip("Each click measures the noise of the surfaces it seeds on; t_p is 3 x that where more than 0.02 m.");
+  ImGui::BeginDisabled(grow_panel_.threshold_from_data);
   ImGui::SliderFloat("t_p (m)", &grow_panel_.plane_threshold_m, 0.001f, 0.1f, "%.3f", ImGuiSliderFlags_Logarithmic);
   tooltip("The plane threshold: how far a point may lie off its plane. Set it near 3 x the scanner's noise.");
+  ImGui::EndDisabled();
   ImGui::Combo("Detail", &grow_panel_.detail, kDetails, IM_ARRAYSIZE(kDetails));
   tooltip("From the view: nearer views grow finer. The others override the density the view implies.");
   // Live: what a click at the view's centre would use now (the target's depth); then the
@@ -179,7 +183,7 @@ void Viewer::drawGrowPanel() {
     const reco::GrowParameters& p = *grow_panel_.last;
     ImGui::TextDisabled("the last click:");
     ImGui::Text("r_s %.3f m   d %.0f pts/m^3", p.seed_radius_m, p.density);
-    ImGui::Text("r %.4f m   t_p %.4f m", p.search_radius_m, p.plane_threshold_m);
+    ImGui::Text("r %.4f m", p.search_radius_m);
     ImGui::Text("pixel %.2f mm at the click", p.pixel_size_m * 1e3);
   } else {
     ImGui::TextUnformatted("Click a surface with the Grow tool (G).");
@@ -192,6 +196,11 @@ void Viewer::drawGrowPanel() {
                 s.corners.size());
     ImGui::Text("first snapshot %.1f ms, %s %.1f ms", u.first_progress_ms, u.final ? "done" : "now", s.elapsed_ms);
     ImGui::Text("cells %" PRIu64 ", points tested %" PRIu64, s.cells_visited, s.points_tested);
+    if (s.noise_sigma_m > 0.0) {
+      ImGui::Text("t_p %.4f m in use (the noise measured: %.2f mm)", s.plane_threshold_m, s.noise_sigma_m * 1e3);
+    } else {
+      ImGui::Text("t_p %.4f m in use", s.plane_threshold_m);
+    }
   }
   if (cloud_ && cloud_->grow && cloud_->grow->busy()) {
     if (ImGui::Button("Cancel")) cloud_->grow->cancel();
