@@ -46,6 +46,12 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> intersectionLine(const Plane& a, con
 
 }  // namespace
 
+std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lineOfPlanes(const Plane& a, const Plane& b,
+                                                                        double min_angle_deg) {
+  if (!intersecting(a, b, std::sin(min_angle_deg * M_PI / 180.0))) return std::nullopt;
+  return intersectionLine(a, b);
+}
+
 std::optional<Eigen::Vector3d> cornerOfPlanes(const Plane& a, const Plane& b, const Plane& c, double min_angle_deg) {
   const double min_sine = std::sin(min_angle_deg * M_PI / 180.0);
   if (!intersecting(a, b, min_sine) || !intersecting(a, c, min_sine) || !intersecting(b, c, min_sine)) {

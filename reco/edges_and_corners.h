@@ -54,6 +54,11 @@ struct Features {
 std::optional<Eigen::Vector3d> cornerOfPlanes(const Plane& a, const Plane& b, const Plane& c,
                                               double min_angle_deg = 10.0);
 
+// The line where two planes meet (a point on it near their centroids, and a unit direction), or
+// nothing when they are closer to parallel than `min_angle_deg`.
+std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lineOfPlanes(const Plane& a, const Plane& b,
+                                                                        double min_angle_deg = 10.0);
+
 // All viable pairs (edges) and triples (corners) of segments: planes not parallel, each
 // segment with points (a non-vanishing polygon), and each with points near the intersection.
 Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const FeatureOptions& options = {});

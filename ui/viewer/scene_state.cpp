@@ -1,6 +1,8 @@
 #include "ui/viewer/scene_state.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "reco/edges_and_corners.h"
@@ -46,7 +48,20 @@ void SceneState::applyGrow(const GrowUpdate& update) {
   if (keep) edit.emplace(history_, "Grow");
   std::vector<ecs::Entity> created;
   std::vector<ecs::Entity> segment_entities;
+  std::vector<ecs::Entity> refined;
   for (const reco::SegmentSnapshot& snapshot : update.snapshot.segments) {
+    // One surface, one segment: a final result's segment on the surface of one kept already
+    // refines it (the newer click's detail) instead of adding a copy.
+    if (keep) {
+      std::vector<ecs::Entity> taken = refined;  // each kept segment refined once; none of this result's
+      taken.insert(taken.end(), segment_entities.begin(), segment_entities.end());
+      if (const std::optional<ecs::Entity> held = segmentOnSameSurface(snapshot, update.snapshot, taken)) {
+        refineSegment(*held, snapshot, update.grow);
+        refined.push_back(*held);
+        segment_entities.push_back(*held);
+        continue;
+      }
+    }
     const ecs::Entity entity = registry_.create();
     Segment segment;
     segment.plane = snapshot.plane;
@@ -62,22 +77,37 @@ void SceneState::applyGrow(const GrowUpdate& update) {
     created.push_back(entity);
   }
   for (const reco::Edge& found : update.snapshot.edges) {
+    const std::array<ecs::Entity, 2> segments{segment_entities[found.segments[0]], segment_entities[found.segments[1]]};
+    Edge edge{segments, found.start, found.end, found.direction, found.support_points};
+    const Eigen::Vector3d snap = 0.5 * (found.start + found.end);
+    // Between refined segments the edge may be kept already: it takes the newer support range.
+    if (const std::optional<ecs::Entity> kept = keptFeature<Edge>(segments, refined)) {
+      registry_.patch<Edge>(*kept, [&](Edge& e) { e = edge; });
+      if (registry_.has<SnapCandidate>(*kept)) {
+        registry_.patch<SnapCandidate>(*kept, [&](SnapCandidate& c) { c.position = snap; });
+      }
+      continue;
+    }
     const ecs::Entity entity = registry_.create();
-    registry_.emplace(entity, Edge{{segment_entities[found.segments[0]], segment_entities[found.segments[1]]},
-                                   found.start,
-                                   found.end,
-                                   found.direction,
-                                   found.support_points});
-    registry_.emplace(entity, SnapCandidate{SnapCandidate::Kind::kEdge, 0.5 * (found.start + found.end), entity});
+    registry_.emplace(entity, std::move(edge));
+    registry_.emplace(entity, SnapCandidate{SnapCandidate::Kind::kEdge, snap, entity});
     created.push_back(entity);
   }
   for (const reco::Corner& found : update.snapshot.corners) {
+    const std::array<ecs::Entity, 3> segments{segment_entities[found.segments[0]], segment_entities[found.segments[1]],
+                                              segment_entities[found.segments[2]]};
+    if (const std::optional<ecs::Entity> kept = keptFeature<Corner>(segments, refined)) {
+      registry_.patch<Corner>(*kept, [&](Corner& c) {
+        c.position = found.position;
+        c.support = found.support;
+      });
+      if (registry_.has<SnapCandidate>(*kept)) {
+        registry_.patch<SnapCandidate>(*kept, [&](SnapCandidate& c) { c.position = found.position; });
+      }
+      continue;
+    }
     const ecs::Entity entity = registry_.create();
-    registry_.emplace(entity, Corner{{segment_entities[found.segments[0]], segment_entities[found.segments[1]],
-                                      segment_entities[found.segments[2]]},
-                                     found.position,
-                                     found.support,
-                                     ""});
+    registry_.emplace(entity, Corner{segments, found.position, found.support, ""});
     registry_.emplace(entity, SnapCandidate{SnapCandidate::Kind::kCorner, found.position, entity});
     created.push_back(entity);
   }
@@ -86,6 +116,124 @@ void SceneState::applyGrow(const GrowUpdate& update) {
   } else {
     live_ = std::move(created);
   }
+}
+
+// The kept Edge or Corner (`Feature`) of the same segments as `segments`, in any order, where
+// one of them is `refined` (a feature among new segments only is new). None otherwise.
+template <typename Feature, std::size_t N>
+std::optional<ecs::Entity> SceneState::keptFeature(const std::array<ecs::Entity, N>& segments,
+                                                   const std::vector<ecs::Entity>& refined) const {
+  const bool touches_refined = std::any_of(segments.begin(), segments.end(), [&](ecs::Entity s) {
+    return std::find(refined.begin(), refined.end(), s) != refined.end();
+  });
+  if (!touches_refined) return std::nullopt;
+  std::array<ecs::Entity, N> wanted = segments;
+  std::sort(wanted.begin(), wanted.end());
+  std::optional<ecs::Entity> result;
+  registry_.view<Feature>().each([&](ecs::Entity entity, const Feature& feature) {
+    std::array<ecs::Entity, N> have = feature.segments;
+    std::sort(have.begin(), have.end());
+    if (!result && have == wanted) result = entity;
+  });
+  return result;
+}
+
+// A kept segment on the surface of `found` (a final result's segment): their planes within 2
+// degrees and each one's centroid within the other's reach (t_p, or 3 x the larger RMS), and
+// their outlines' extents on the kept plane overlapping or within r of each other. Not one of
+// `taken` (refined by another segment of the same result already, or made by it). The first
+// such, if any.
+std::optional<ecs::Entity> SceneState::segmentOnSameSurface(const reco::SegmentSnapshot& found,
+                                                            const reco::GrowSnapshot& grow,
+                                                            const std::vector<ecs::Entity>& taken) const {
+  if (!found.plane.valid || !found.outline) return std::nullopt;
+  constexpr double kMaxAngleDeg = 2.0;
+  std::optional<ecs::Entity> result;
+  // The extent of an outline's triangulation on the frame of `plane_outline`.
+  const auto extent = [](const reco::PlaneOutline& outline, const reco::PlaneOutline& frame) {
+    Eigen::AlignedBox2d box;
+    for (const Eigen::Vector2d& v : outline.shape.vertices) {
+      const Eigen::Vector3d p = outline.toWorld(v) - frame.origin;
+      box.extend(Eigen::Vector2d(p.dot(frame.axis_u), p.dot(frame.axis_v)));
+    }
+    return box;
+  };
+  registry_.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
+    if (result || segment.growing || !segment.plane.valid || !segment.outline) return;
+    if (std::find(taken.begin(), taken.end(), entity) != taken.end()) return;
+    const double cos_angle = std::abs(segment.plane.normal.dot(found.plane.normal));
+    if (cos_angle < std::cos(kMaxAngleDeg * M_PI / 180.0)) return;
+    const double reach = std::max(grow.plane_threshold_m, 3.0 * std::max(segment.plane.rms, found.plane.rms));
+    if (segment.plane.distance(found.plane.centroid) > reach || found.plane.distance(segment.plane.centroid) > reach) {
+      return;
+    }
+    Eigen::AlignedBox2d kept = extent(*segment.outline, *segment.outline);
+    const Eigen::AlignedBox2d grown = extent(*found.outline, *segment.outline);
+    const Eigen::Vector2d margin = Eigen::Vector2d::Constant(grow.search_radius_m);
+    kept = Eigen::AlignedBox2d(kept.min() - margin, kept.max() + margin);
+    if (kept.intersects(grown)) result = entity;
+  });
+  return result;
+}
+
+// Gives a kept segment a final result's plane, outline and statistics (its name stays), and
+// moves the edges and corners it has onto the new plane: the lines and points where it meets
+// the others' planes now (the support range of an edge projected onto its new line). One that
+// no longer meets them (planes turned parallel) goes. Inside the result's edit: one undo
+// restores it all. The result's own edges and corners of the same segments follow (applyGrow).
+void SceneState::refineSegment(ecs::Entity held, const reco::SegmentSnapshot& found, std::uint64_t grow) {
+  registry_.patch<Segment>(held, [&](Segment& segment) {
+    segment.plane = found.plane;
+    segment.outline = found.outline;
+    segment.points = found.points;
+    segment.area_m2 = found.outline ? found.outline->shape.area_m2 : 0.0;
+    segment.lambda2 = found.plane.lambda2;
+    segment.grow = grow;
+  });
+  const auto planeOf = [&](ecs::Entity segment) { return registry_.get<Segment>(segment).plane; };
+  const auto uses = [&](const auto& segments) {
+    return std::find(segments.begin(), segments.end(), held) != segments.end();
+  };
+  std::vector<ecs::Entity> edges, corners, gone;
+  registry_.view<Edge>().each([&](ecs::Entity entity, const Edge& edge) {
+    if (uses(edge.segments)) edges.push_back(entity);
+  });
+  registry_.view<Corner>().each([&](ecs::Entity entity, const Corner& corner) {
+    if (uses(corner.segments)) corners.push_back(entity);
+  });
+  for (const ecs::Entity entity : edges) {
+    const Edge& edge = registry_.get<Edge>(entity);
+    const auto line = reco::lineOfPlanes(planeOf(edge.segments[0]), planeOf(edge.segments[1]));
+    if (!line) {
+      gone.push_back(entity);
+      continue;
+    }
+    const auto& [origin, direction] = *line;
+    const auto onLine = [&](const Eigen::Vector3d& p) { return origin + (p - origin).dot(direction) * direction; };
+    const Eigen::Vector3d start = onLine(edge.start), end = onLine(edge.end);
+    registry_.patch<Edge>(entity, [&](Edge& e) {
+      e.start = start;
+      e.end = end;
+      e.direction = (end - start).normalized();
+    });
+    if (registry_.has<SnapCandidate>(entity)) {
+      registry_.patch<SnapCandidate>(entity, [&](SnapCandidate& snap) { snap.position = 0.5 * (start + end); });
+    }
+  }
+  for (const ecs::Entity entity : corners) {
+    const Corner& corner = registry_.get<Corner>(entity);
+    const auto position =
+        reco::cornerOfPlanes(planeOf(corner.segments[0]), planeOf(corner.segments[1]), planeOf(corner.segments[2]));
+    if (!position) {
+      gone.push_back(entity);
+      continue;
+    }
+    registry_.patch<Corner>(entity, [&](Corner& c) { c.position = *position; });
+    if (registry_.has<SnapCandidate>(entity)) {
+      registry_.patch<SnapCandidate>(entity, [&](SnapCandidate& snap) { snap.position = *position; });
+    }
+  }
+  for (const ecs::Entity entity : gone) registry_.destroy(entity);
 }
 
 std::size_t SceneState::deleteSelected() {

@@ -6,7 +6,9 @@
 // polygons, a corner of three segments, renames, groups, deletions) is one undoable edit too.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -14,6 +16,11 @@
 #include "engine/ecs/history.h"
 #include "engine/ecs/registry.h"
 #include "ui/viewer/components.h"
+
+namespace plumb::reco {
+struct SegmentSnapshot;
+struct GrowSnapshot;
+}  // namespace plumb::reco
 
 namespace plumb::viewer {
 
@@ -27,7 +34,8 @@ class SceneState {
   SceneState& operator=(const SceneState&) = delete;
 
   // Applies a grow's snapshot (GrowSession's update). A final update of a cancelled grow drops
-  // its live entities.
+  // its live entities. A final result's segment on the surface of a segment kept already (a
+  // second click on a wall) refines that segment instead of adding a copy, in the same edit.
   void applyGrow(const GrowUpdate& update);
   // Drops the live entities of an unfinished grow (a newer click cancelled it).
   void dropLive();
@@ -83,6 +91,12 @@ class SceneState {
 
  private:
   void destroyAll(std::vector<ecs::Entity>& entities);
+  std::optional<ecs::Entity> segmentOnSameSurface(const reco::SegmentSnapshot& found, const reco::GrowSnapshot& grow,
+                                                  const std::vector<ecs::Entity>& taken) const;
+  void refineSegment(ecs::Entity held, const reco::SegmentSnapshot& found, std::uint64_t grow);
+  template <typename Feature, std::size_t N>
+  std::optional<ecs::Entity> keptFeature(const std::array<ecs::Entity, N>& segments,
+                                         const std::vector<ecs::Entity>& refined) const;
   ecs::Entity addCopy(ecs::Entity polygon, const Eigen::Vector3d& offset);
   void translate(Polygon& polygon, const Eigen::Vector3d& offset) const;
 

@@ -106,6 +106,53 @@ TEST(SceneState, GrowsAccumulateAndANewClickDropsOnlyTheLiveOne) {
   EXPECT_EQ(scene.registry().count<Segment>(), 3u);
 }
 
+// A second click on the same corner (a final result whose three segments lie on the surfaces of
+// the three kept): the kept segments are refined, keeping their names, with the new result's
+// edges and corners; one undo brings back the first result's planes, edges and corner.
+TEST(SceneState, ASecondGrowOnTheSameSurfacesRefinesTheirSegments) {
+  SceneState scene;
+  scene.applyGrow(cornerUpdate(1, true));
+  GrowUpdate again = cornerUpdate(2, true);
+  for (reco::SegmentSnapshot& segment : again.snapshot.segments) {
+    segment.points = 5000;                                   // finer detail
+    segment.plane.centroid += 0.001 * segment.plane.normal;  // within t_p of the first
+    segment.plane.offset = -segment.plane.normal.dot(segment.plane.centroid);
+  }
+  again.snapshot.plane_threshold_m = 0.02;
+  again.snapshot.search_radius_m = 0.1;
+  again.snapshot.corners[0].position = {0.001, 0.001, 0.001};
+  scene.applyGrow(again);
+  const ecs::Registry& registry = scene.registry();
+  ASSERT_EQ(registry.count<Segment>(), 3u) << "no copies";
+  EXPECT_EQ(registry.count<Edge>(), 2u);
+  ASSERT_EQ(registry.count<Corner>(), 1u);
+  std::vector<std::string> names;
+  registry.view<Segment>().each([&](ecs::Entity, const Segment& segment) {
+    EXPECT_EQ(segment.points, 5000u);
+    EXPECT_EQ(segment.grow, 2u);
+    names.push_back(segment.name);
+  });
+  EXPECT_EQ(names, (std::vector<std::string>{"Segment 1", "Segment 2", "Segment 3"}));
+  registry.view<Corner>().each([](ecs::Entity, const Corner& corner) { EXPECT_DOUBLE_EQ(corner.position.x(), 0.001); });
+
+  ASSERT_TRUE(scene.history().undo());
+  ASSERT_EQ(registry.count<Segment>(), 3u);
+  registry.view<Segment>().each([](ecs::Entity, const Segment& segment) { EXPECT_EQ(segment.points, 1000u); });
+  EXPECT_EQ(registry.count<Edge>(), 2u);
+  registry.view<Corner>().each([](ecs::Entity, const Corner& corner) { EXPECT_DOUBLE_EQ(corner.position.x(), 0.0); });
+
+  // A parallel surface 10 cm away is another surface: a segment of its own.
+  scene.history().redo();
+  GrowUpdate behind = cornerUpdate(3, true);
+  behind.snapshot.segments.resize(1);
+  behind.snapshot.edges.clear();
+  behind.snapshot.corners.clear();
+  behind.snapshot.segments[0].plane = planeWithNormal(Eigen::Vector3d::UnitX(), Eigen::Vector3d(-0.1, 1, 1));
+  behind.snapshot.plane_threshold_m = 0.02;
+  scene.applyGrow(behind);
+  EXPECT_EQ(registry.count<Segment>(), 4u);
+}
+
 TEST(SceneState, DeletingASegmentTakesItsEdgesAndCornersAndUndoes) {
   SceneState scene;
   scene.applyGrow(cornerUpdate(1, true));
