@@ -22,7 +22,7 @@ CellState& Grower::loaded(const CellKey& key) {
       state.rejected_epoch.push_back(kNeverTested);
       state.rejected_by.push_back(0);
     }
-    indexCell(state);
+    if (!gathering_seed_) indexCell(state);  // the seed indexes its cells once r is known
   }
   return state;
 }

@@ -142,7 +142,7 @@ class Grower {
   double seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
                         double window) const;
   std::vector<SeedPlane> seedPlanesMeasuringThreshold(std::span<const Eigen::Vector3d> points, SeedOptions options);
-  bool adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes);
+  void adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes);
   void seed();
   void fillSnapshot(bool final);
   void publish();
@@ -218,6 +218,7 @@ class Grower {
   // How many levels finer than its cell's level a cell's points go (seed): 0 but where r is many
   // times the spacing of the level d asks for (full detail).
   std::uint32_t point_levels_ = 0;
+  bool gathering_seed_ = false;  // cells load unindexed: r is not known yet (seed)
 
   GrowSnapshot snapshot_;
   std::vector<PlaneRegression> regressions_;

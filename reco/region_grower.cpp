@@ -96,8 +96,8 @@ GrowSnapshot Grower::run() {
 // data has: the median nearest-neighbour distance, and each seed plane's areal spacing, which
 // also sees the gaps between scan lines (point_spacing.h). r follows the largest, at most half
 // of r_s. The density the grow aims for stays d: where the octree has finer points further on,
-// the adaptive resolution goes and gets them. Returns whether r changed.
-bool Grower::adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes) {
+// the adaptive resolution goes and gets them.
+void Grower::adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes) {
   double data_spacing = medianNearestDistance(seed_points, 0.5 * parameters_.seed_radius_m);
   std::vector<Eigen::Vector3d> inliers;
   for (const SeedPlane& plane : planes) {
@@ -106,14 +106,12 @@ bool Grower::adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points,
     data_spacing = std::max(data_spacing, arealSpacing(plane.plane, inliers));
   }
   snapshot_.data_spacing_m = data_spacing;
-  const bool widen = 2.0 * data_spacing > radius_;
-  if (widen) {
+  if (2.0 * data_spacing > radius_) {
     radius_from_data_ = true;
     radius_ = std::min(2.0 * data_spacing, 0.5 * parameters_.seed_radius_m);
     grid_ = PointGrid(parameters_.seed, radius_);
   }
   snapshot_.search_radius_m = radius_;
-  return widen;
 }
 
 // The deepest level, not below `finest`, whose cells are at least `width` wide.
@@ -165,6 +163,7 @@ void Grower::seed() {
   const std::uint32_t gather_level = cellLevelFor(0.25 * parameters_.seed_radius_m, point_level);
   point_levels_ = point_level - gather_level;
   SeedSphere sphere;
+  gathering_seed_ = true;
   claimSeedCells(gather_level, sphere);
   std::vector<Eigen::Vector3d>& points = sphere.points;
   SeedOptions seed_options;
@@ -177,7 +176,8 @@ void Grower::seed() {
                                             ? seedPlanesMeasuringThreshold(points, seed_options)
                                             : findSeedPlanes(points, seed_options);
   snapshot_.plane_threshold_m = parameters_.plane_threshold_m;
-  const bool widened = adaptToDataSpacing(points, planes);
+  adaptToDataSpacing(points, planes);
+  gathering_seed_ = false;
   const std::uint32_t cell_level = cellLevelFor(kMinCellRadii * radius_, point_level);
   if (cell_level != gather_level) {
     // Claimed anew at the cell level; the inliers are found again by their identities.
@@ -194,12 +194,9 @@ void Grower::seed() {
     for (const auto& [key, index] : claimed.origin) {
       sphere.origin[seed_index.at(refKey(cells_[key].refs[index]))] = {key, index};
     }
-  } else if (widened) {
-    // Loaded before r was known: the neighbour grids of the cells anew.
-    for (const CellKey& key : sphere.cells) {
-      CellState& state = cells_[key];
-      indexCell(state);
-    }
+  } else {
+    // Loaded before r was known: their neighbour grids now.
+    for (const CellKey& key : sphere.cells) indexCell(cells_[key]);
   }
   regressions_.resize(planes.size());
   planes_.resize(planes.size());

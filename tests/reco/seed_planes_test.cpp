@@ -44,33 +44,37 @@ TEST(SeedPlanes, TwoPlanesAtRightAngles) {
   EXPECT_TRUE(both.empty());
 }
 
-// A plane and a small stray patch: Otsu drops the patch, switching it off keeps it.
-TEST(SeedPlanes, OtsuDropsAnUnstablePlane) {
+// A plane z = 0 of 3,000 points and a small stray patch y = 0.5 of 200 beside it, 1 mm noise.
+std::vector<Eigen::Vector3d> planeAndStrayPatch() {
   Random random(6);
   std::vector<Eigen::Vector3d> points;
   for (int i = 0; i < 3000; ++i) points.emplace_back(random.uniform(), random.uniform(), 0.001 * random.gaussian());
   for (int i = 0; i < 200; ++i) {
     points.emplace_back(0.5 + 0.1 * random.uniform(), 0.5 + 0.001 * random.gaussian(), 0.2 + 0.1 * random.uniform());
   }
+  return points;
+}
+
+SeedOptions strayPatchOptions() {
   SeedOptions options;
   options.threshold = 0.005;
   options.min_inlier_fraction = 0.02;
+  return options;
+}
+
+// Otsu drops the patch, switching it off keeps it.
+TEST(SeedPlanes, OtsuDropsAnUnstablePlane) {
+  const std::vector<Eigen::Vector3d> points = planeAndStrayPatch();
+  SeedOptions options = strayPatchOptions();
   EXPECT_EQ(findSeedPlanes(points, options).size(), 1u);
   options.drop_unstable = false;
   EXPECT_EQ(findSeedPlanes(points, options).size(), 2u);
 }
 
-// The same small patch, picked by the user: it is the surface asked for, and stays.
+// The same patch, picked by the user: it is the surface asked for, and stays.
 TEST(SeedPlanes, ThePickedPlaneIsNeverDroppedAsUnstable) {
-  Random random(6);
-  std::vector<Eigen::Vector3d> points;
-  for (int i = 0; i < 3000; ++i) points.emplace_back(random.uniform(), random.uniform(), 0.001 * random.gaussian());
-  for (int i = 0; i < 200; ++i) {
-    points.emplace_back(0.5 + 0.1 * random.uniform(), 0.5 + 0.001 * random.gaussian(), 0.2 + 0.1 * random.uniform());
-  }
-  SeedOptions options;
-  options.threshold = 0.005;
-  options.min_inlier_fraction = 0.02;
+  const std::vector<Eigen::Vector3d> points = planeAndStrayPatch();
+  SeedOptions options = strayPatchOptions();
   options.picked = Eigen::Vector3d(0.55, 0.5, 0.25);
   const auto planes = findSeedPlanes(points, options);
   ASSERT_EQ(planes.size(), 2u);
