@@ -2,7 +2,7 @@
 //
 //   1. For every pair of segments whose valid planes meet at more than min_angle: intersect
 //      them (in coordinates relative to the segments' centroids, exact at UTM scale).
-//   2. Gather each segment's points near the line (within 2r, or 4 RMS of its plane where
+//   2. Gather each segment's points near the line (within 2r, or 8 RMS of its plane where
 //      wider: at full detail r may be about the noise); with at least min_near_points from
 //      each, project them onto the line: the 5th to 95th percentile is the support range and
 //      gives the edge's endpoints.
@@ -73,10 +73,11 @@ Features findEdgesAndCorners(std::span<const SegmentGeometry> segments, const Fe
   Features features;
   const double min_sine = std::sin(options.min_angle_deg * M_PI / 180.0);
   // Near a line or a corner: within 2r, or within noise_near_sigmas times the plane's RMS where
-  // that is wider. At full detail on a dense scan r is a few point spacings, about the noise
-  // (a 100 M-point room at 5 mm noise: r 5.6 mm), and where three planes meet within the noise
-  // each point went to one of them: no segment kept a point within 2r of the corner, and the
-  // click at the corner found none.
+  // that is wider. Along an edge the growth turns away a strip of points about two inlier
+  // windows wide (each 2.25 RMS), where the free points of the other surface pull the continuity
+  // test's mean. At full detail on a dense scan r is a few point spacings, less than that strip
+  // (a 100 M-point room at 5 mm noise: r 5.6 mm), and no segment kept a point within 2r of the
+  // corner: the click at the corner found none.
   const auto nearOf = [&](std::uint32_t s) {
     return std::max(2.0 * options.search_radius, options.noise_near_sigmas * segments[s].plane.rms);
   };

@@ -35,7 +35,7 @@ struct Corner {
 
 struct FeatureOptions {
   double search_radius = 0.05;     // r of the grow: points within 2r of a line or corner count as near
-  double noise_near_sigmas = 4.0;  // or within this many times the segment's plane RMS, where wider
+  double noise_near_sigmas = 8.0;  // or within this many times the segment's plane RMS, where wider
   double min_angle_deg = 10.0;     // planes closer to parallel than this do not intersect
   double low_percentile = 0.05;    // the support range along an edge
   double high_percentile = 0.95;
