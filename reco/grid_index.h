@@ -39,11 +39,6 @@ class GridIndex {
     std::uint32_t begin = 0;
     std::uint32_t end = 0;  // 0: an empty slot (a bucket holds at least one point)
   };
-  static std::size_t hash(const GridKey& key) {
-    // GridKeyHash spreads the keys; the multiply moves its entropy into the low bits the mask keeps.
-    return static_cast<std::size_t>((GridKeyHash{}(key)*0x9E3779B97F4A7C15ULL) >> 17);
-  }
-
   std::vector<std::uint32_t> order_;  // point indices grouped by grid cell, ascending within one
   std::vector<Slot> slots_;           // a power of two, at most half full
   std::size_t mask_ = 0;

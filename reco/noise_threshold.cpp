@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include "reco/grid_index.h"
+
 namespace plumb::reco {
 namespace {
 
@@ -53,19 +55,27 @@ double truncatedNormalSigma(std::span<const double> abs_residuals, double window
 double localNoiseSigma(std::span<const Eigen::Vector3d> points, double radius) {
   constexpr std::size_t kSamples = 64;
   constexpr std::size_t kMinPatch = 12;
+  if (points.empty()) return 0.0;
   const std::size_t stride = std::max<std::size_t>(1, points.size() / kSamples);
+  // A grid of step `radius`: a patch is in the 27 grid cells around its centre (a full-detail
+  // seed sphere holds hundreds of thousands of points; scanning all of them per patch cost more
+  // than the rest of the seed).
+  const PointGrid grid(points.front(), radius);
+  const GridIndex index(grid, points);
   std::vector<double> sigmas;
   for (std::size_t s = 0; s < points.size(); s += stride) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
     std::size_t n = 0;
-    for (const Eigen::Vector3d& p : points) {
-      const Eigen::Vector3d d = p - points[s];  // relative: UTM coordinates keep their precision
-      if (d.squaredNorm() > radius * radius) continue;
-      sum += d;
-      outer += d * d.transpose();
-      ++n;
-    }
+    grid.forEachAround(points[s], [&](const GridKey& key) {
+      for (std::uint32_t i : index.at(key)) {
+        const Eigen::Vector3d d = points[i] - points[s];  // relative: UTM coordinates keep their precision
+        if (d.squaredNorm() > radius * radius) continue;
+        sum += d;
+        outer += d * d.transpose();
+        ++n;
+      }
+    });
     if (n < kMinPatch) continue;
     const double count = static_cast<double>(n);
     const Eigen::Matrix3d covariance = outer / count - (sum / count) * (sum / count).transpose();

@@ -69,6 +69,20 @@ std::vector<CellKey> existingNeighbours(const Octree& octree, const CellKey& key
   return result;
 }
 
+namespace {
+
+// Appends every point of `node` (loaded through `cache`) to `result`, in storage order.
+void appendNodePoints(NodeCache& cache, const NodeInfo& node, std::vector<CellPoint>& result) {
+  const auto points = cache.get(node.key);
+  const auto node_index = static_cast<std::uint32_t>(&node - cache.octree().nodes().data());
+  result.reserve(result.size() + points->size());
+  for (std::size_t i = 0; i < points->size(); ++i) {
+    result.push_back({points->position(i), {node_index, static_cast<std::uint32_t>(i)}});
+  }
+}
+
+}  // namespace
+
 // An ancestor's points ordered by their cell at one deeper level.
 struct CellPointIndex::SortedNode {
   std::shared_ptr<const NodePoints> points;
@@ -100,21 +114,13 @@ const CellPointIndex::SortedNode& CellPointIndex::sorted(const NodeInfo& node, s
     slot->cells.push_back(cell);
     slot->order.push_back(i);
   }
-  ++sortings_;
   return *slot;
 }
 
 std::vector<CellPoint> CellPointIndex::pointsInCell(const CellKey& key) {
   std::vector<CellPoint> result;
   const Octree& octree = cache_.octree();
-  if (const NodeInfo* own = octree.find(key)) {
-    const auto points = cache_.get(key);
-    const auto node_index = static_cast<std::uint32_t>(own - octree.nodes().data());
-    result.reserve(points->size());
-    for (std::size_t i = 0; i < points->size(); ++i) {
-      result.push_back({points->position(i), {node_index, static_cast<std::uint32_t>(i)}});
-    }
-  }
+  if (const NodeInfo* own = octree.find(key)) appendNodePoints(cache_, *own, result);
   for (std::optional<CellKey> level = key.parent(); level; level = level->parent()) {
     const NodeInfo* node = octree.find(*level);
     if (node == nullptr) continue;
@@ -143,11 +149,7 @@ std::vector<CellPoint> CellPointIndex::pointsInCell(const CellKey& key, std::uin
         const NodeInfo* child = octree.find(node->key.child(octant));
         if (child == nullptr) continue;
         next.push_back(child);
-        const auto points = cache_.get(child->key);
-        const auto node_index = static_cast<std::uint32_t>(child - octree.nodes().data());
-        for (std::size_t i = 0; i < points->size(); ++i) {
-          result.push_back({points->position(i), {node_index, static_cast<std::uint32_t>(i)}});
-        }
+        appendNodePoints(cache_, *child, result);
       }
     }
     level_nodes = std::move(next);

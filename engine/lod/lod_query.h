@@ -79,16 +79,12 @@ class CellPointIndex {
   // works in coarser cells than the density it wants (a grow at full detail).
   std::vector<CellPoint> pointsInCell(const CellKey& key, std::uint32_t point_level);
 
-  // Ancestor sortings made so far (what plumb_bench_grow reports as the index's work).
-  std::uint64_t sortings() const { return sortings_; }
-
  private:
   struct SortedNode;
   const SortedNode& sorted(const NodeInfo& node, std::uint32_t level);
 
   NodeCache& cache_;
   std::unordered_map<std::uint64_t, std::unique_ptr<SortedNode>> sorted_;  // by node index and level
-  std::uint64_t sortings_ = 0;
 };
 
 }  // namespace plumb::lod

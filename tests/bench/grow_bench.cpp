@@ -43,15 +43,15 @@ void growOnce(lod::NodeCache& cache, const reco::GrowParameters& parameters, con
       static_cast<unsigned long long>(result.cells_visited));
 }
 
-// Simulates `scene` with `points` at `noise_mm` (scanner seed 11) into `directory` and builds its octree; returns its
-// path.
-std::string buildScene(const std::filesystem::path& directory, const char* scene, std::uint64_t points, double noise_mm,
-                       const Eigen::Vector3d& offset, lod::BuildReport& report) {
+// Simulates `scene` with `points` by `scanner` into `directory` and builds its octree; returns
+// its path.
+std::string buildScene(const std::filesystem::path& directory, const char* scene, std::uint64_t points,
+                       const reco::sim::ScannerSettings& scanner, const Eigen::Vector3d& offset,
+                       lod::BuildReport& report) {
   reco::sim::SimulationRequest request;
   request.scene = scene;
+  request.scanner = scanner;
   request.target_points = points;
-  request.scanner.noise_m = 0.001 * noise_mm;
-  request.scanner.seed = 11;
   request.offset = offset;
   request.ply_path = (directory / (std::string(scene) + ".ply")).string();
   reco::sim::simulate(request);
@@ -63,13 +63,31 @@ std::string buildScene(const std::filesystem::path& directory, const char* scene
   return build.output;
 }
 
+// The same click twice on a cache of `cache_bytes`: with no node loaded (cold), then on the
+// nodes it loaded (warm). The process's first grow pays one-time costs (thread pool, allocator,
+// page tables) that a viewer pays at start-up: a grow on a cache of its own takes them first.
+void growColdAndWarm(const std::shared_ptr<const lod::Octree>& octree, const reco::GrowParameters& parameters,
+                     std::size_t cache_bytes) {
+  {
+    lod::NodeCache warm_up(octree, cache_bytes);
+    growOnce(warm_up, parameters, nullptr);
+  }
+  lod::NodeCache cache(octree, cache_bytes);
+  growOnce(cache, parameters, "cold");
+  growOnce(cache, parameters, "warm");
+  std::fflush(stdout);
+}
+
 // High and full detail at a room corner, cold and warm, at 1, 10 and 100 million points.
 void benchDetail(const std::filesystem::path& directory) {
   const Eigen::Vector3d offset(512000, 5403000, 250);
   const Eigen::Vector3d click = offset + Eigen::Vector3d(0.1, 0.1, 0.1);
   for (const std::uint64_t points : {1'000'000ull, 10'000'000ull, 100'000'000ull}) {
+    reco::sim::ScannerSettings scanner;
+    scanner.noise_m = 0.005;
+    scanner.seed = 11;
     lod::BuildReport report;
-    const std::string path = buildScene(directory, "room", points, 5.0, offset, report);
+    const std::string path = buildScene(directory, "room", points, scanner, offset, report);
     const auto octree = lod::Octree::open(path);
     const reco::ParameterConstants constants{.plane_threshold_m = 0.015};
     const double seed_radius = reco::parametersForView(reco::viewFromDistance(click, 3.0), constants).seed_radius_m;
@@ -80,14 +98,7 @@ void benchDetail(const std::filesystem::path& directory) {
       std::printf("room, 5 mm noise, %llu points (%llu nodes), click 0.1 m inside corner (0, 0, 0), %s detail:\n",
                   static_cast<unsigned long long>(report.points), static_cast<unsigned long long>(report.nodes),
                   detail == reco::Detail::kFull ? "full" : "high");
-      {
-        lod::NodeCache warm_up(octree, std::size_t{1} << 30);  // one-time costs, as below
-        growOnce(warm_up, parameters, nullptr);
-      }
-      lod::NodeCache cache(octree, std::size_t{4} << 30);
-      growOnce(cache, parameters, "cold");
-      growOnce(cache, parameters, "warm");
-      std::fflush(stdout);
+      growColdAndWarm(octree, parameters, std::size_t{4} << 30);
     }
     std::filesystem::remove(path);
   }
@@ -110,35 +121,17 @@ int main(int argc, char** argv) {
   // The middle of the hall's y = 0 wall (6 m long, 3 m high), in world coordinates.
   const Eigen::Vector3d click = offset + Eigen::Vector3d(3.0, 0.0, 1.5);
   for (const std::uint64_t points : {10'000'000ull, 100'000'000ull}) {
-    reco::sim::SimulationRequest request;
-    request.scene = "hall";
-    request.target_points = points;
-    request.offset = offset;
-    request.ply_path = (directory / "hall.ply").string();
-    reco::sim::simulate(request);
-    lod::BuildOptions build;
-    build.sources = lod::fileSources({request.ply_path});
-    build.output = (directory / "hall.plumb").string();
-    const lod::BuildReport report = lod::buildOctree(build);
-    std::filesystem::remove(request.ply_path);
-
-    const auto octree = lod::Octree::open(build.output);
+    lod::BuildReport report;
+    const std::string path = buildScene(directory, "hall", points, reco::sim::ScannerSettings{}, offset, report);
+    const auto octree = lod::Octree::open(path);
     const reco::GrowParameters parameters = reco::parametersForView(reco::viewFromDistance(click, 3.0));
     std::printf(
         "hall, %llu points (%llu nodes), click on the middle of the 6 x 3 m wall from 3 m "
         "(r_s %.2f m, spacing %.3f m):\n",
         static_cast<unsigned long long>(report.points), static_cast<unsigned long long>(report.nodes),
         parameters.seed_radius_m, parameters.spacing_m);
-    {
-      // The process's first grow pays one-time costs (thread pool, allocator, page tables) that a
-      // viewer pays at start-up: a grow on a cache of its own takes them first.
-      lod::NodeCache warm_up(octree, std::size_t{1} << 30);
-      growOnce(warm_up, parameters, nullptr);
-    }
-    lod::NodeCache cache(octree, std::size_t{1} << 30);  // cold: no node loaded yet
-    growOnce(cache, parameters, "cold");
-    growOnce(cache, parameters, "warm");
-    std::filesystem::remove(build.output);
+    growColdAndWarm(octree, parameters, std::size_t{1} << 30);
+    std::filesystem::remove(path);
   }
   benchDetail(directory);
   return 0;
