@@ -15,6 +15,17 @@ nlohmann::json vector3(const Eigen::Vector3d& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
 }
 
+// What a segment takes from grow `grow`'s snapshot of it: plane, outline and statistics (not its
+// name or whether it is still growing).
+void takeGrownGeometry(Segment& segment, const reco::SegmentSnapshot& snapshot, std::uint64_t grow) {
+  segment.plane = snapshot.plane;
+  segment.outline = snapshot.outline;
+  segment.points = snapshot.points;
+  segment.area_m2 = snapshot.outline ? snapshot.outline->shape.area_m2 : 0.0;
+  segment.lambda2 = snapshot.plane.lambda2;
+  segment.grow = grow;
+}
+
 }  // namespace
 
 SceneState::SceneState() : history_(registry_), tool_(registry_.create()) {
@@ -64,12 +75,7 @@ void SceneState::applyGrow(const GrowUpdate& update) {
     }
     const ecs::Entity entity = registry_.create();
     Segment segment;
-    segment.plane = snapshot.plane;
-    segment.outline = snapshot.outline;
-    segment.points = snapshot.points;
-    segment.area_m2 = snapshot.outline ? snapshot.outline->shape.area_m2 : 0.0;
-    segment.lambda2 = snapshot.plane.lambda2;
-    segment.grow = update.grow;
+    takeGrownGeometry(segment, snapshot, update.grow);
     segment.growing = !keep;
     if (keep) segment.name = "Segment " + std::to_string(++segments_named_);
     registry_.emplace(entity, std::move(segment));
@@ -149,7 +155,7 @@ std::optional<ecs::Entity> SceneState::segmentOnSameSurface(const reco::SegmentS
   if (!found.plane.valid || !found.outline) return std::nullopt;
   constexpr double kMaxAngleDeg = 2.0;
   std::optional<ecs::Entity> result;
-  // The extent of an outline's triangulation on the frame of `plane_outline`.
+  // The extent of an outline's triangulation on the frame of `frame`.
   const auto extent = [](const reco::PlaneOutline& outline, const reco::PlaneOutline& frame) {
     Eigen::AlignedBox2d box;
     for (const Eigen::Vector2d& v : outline.shape.vertices) {
@@ -182,14 +188,7 @@ std::optional<ecs::Entity> SceneState::segmentOnSameSurface(const reco::SegmentS
 // no longer meets them (planes turned parallel) goes. Inside the result's edit: one undo
 // restores it all. The result's own edges and corners of the same segments follow (applyGrow).
 void SceneState::refineSegment(ecs::Entity held, const reco::SegmentSnapshot& found, std::uint64_t grow) {
-  registry_.patch<Segment>(held, [&](Segment& segment) {
-    segment.plane = found.plane;
-    segment.outline = found.outline;
-    segment.points = found.points;
-    segment.area_m2 = found.outline ? found.outline->shape.area_m2 : 0.0;
-    segment.lambda2 = found.plane.lambda2;
-    segment.grow = grow;
-  });
+  registry_.patch<Segment>(held, [&](Segment& segment) { takeGrownGeometry(segment, found, grow); });
   const auto planeOf = [&](ecs::Entity segment) { return registry_.get<Segment>(segment).plane; };
   const auto uses = [&](const auto& segments) {
     return std::find(segments.begin(), segments.end(), held) != segments.end();
