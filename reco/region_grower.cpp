@@ -122,9 +122,10 @@ std::uint32_t Grower::cellLevelFor(double width, std::uint32_t finest) const {
 }
 
 // Claims the cells of `cell_level` that meet the seed sphere, each holding the points of levels
-// down to the base level, and gathers the points inside the sphere with where they lie. Every
+// down to point_levels_ finer, and gathers the points inside the sphere with where they lie. Every
 // cell of the box around the sphere, also those without a node of their own: where a branch
-// ends in a leaf above the level, the cell's points come from its ancestors.
+// ends in a leaf above the level, the cell's points come from its ancestors. `cell_level`
+// becomes the grow's base and working level (the level its cells are claimed at from then on).
 void Grower::claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
   const double rs = parameters_.seed_radius_m;
   const auto seed_array = array(parameters_.seed);
