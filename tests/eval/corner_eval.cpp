@@ -6,7 +6,7 @@
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
 //                      [--details low,medium,high,full] [--jobs N] [--stations N]
 //                      [--grow-limit-s S] [--tp-sigmas K | --tp-from-data] [--noise-sigmas N]
-//                      [--full-repetitions N]
+//                      [--full-repetitions N] [--click corner|wall]
 //                      [--refine-c C] [--print-segments]
 //
 // For each noise level and repetition (the scanner's seed is the repetition, so reruns agree):
@@ -15,10 +15,15 @@
 //   2. read each point's plane_id from the PLY and fit every true plane on all its points: the
 //      three fitted planes of a corner meet at the limit corner;
 //   3. build and open the octree;
-//   4. for each room corner and detail level, grow from a click 0.1 m inside the corner along
-//      each axis (less where the seed sphere is too small to reach the walls from there) and take
-//      the reconstructed corner nearest the truth; none within 0.1 m, or a grow cancelled at the
-//      time limit: lost. The grows of one scan share a node cache: only the first is cold.
+//   4. for each room corner and detail level, grow from a click and take the reconstructed corner
+//      nearest the truth; none within 0.1 m, or a grow cancelled at the time limit: lost. The
+//      click (--click):
+//        corner: 0.1 m inside the corner along each axis (the paper's pattern);
+//        wall:   on one of the corner's walls, 0.3 m from each of the two others, as a user
+//                clicks a wall near a corner (the walls taken in turn: corner i, wall i mod 3,
+//                so that floors, ceilings and walls all get clicked);
+//      both nearer where the seed sphere is too small to reach the other walls from there.
+//      The grows of one scan share a node cache: only the first is cold.
 // Writes DIR/corners.csv (one row per trial) and DIR/summary.csv (per noise and detail, with the
 // issue's targets) and prints the summary. Exits 1 on an internal failure (a throw), never on a
 // missed target: judging those is what the output is for.
@@ -69,6 +74,9 @@ const Eigen::Vector3d kOffset(512000.0, 5403000.0, 250.0);
 // The click lies this far inside the corner along each axis (scripts/run's click), or less where
 // the seed sphere is smaller: a click at the inset must reach all three walls, 3 x inset <= r_s.
 constexpr double kClickInset = 0.1;
+// --click wall: the click lies on a wall this far from each of the corner's two other walls, or
+// less where the seed sphere is smaller (they must lie inside it: 2 x offset <= r_s).
+constexpr double kWallClickOffset = 0.3;
 constexpr double kLostDistance = 0.1;         // a reconstructed corner farther than this was not found
 constexpr double kDefaultViewDistance = 3.0;  // plumb grow's default, and the "medium"
 constexpr std::size_t kCacheBytes = std::size_t{256} << 20;
@@ -347,6 +355,7 @@ struct Settings {
   double noise_sigmas = reco::GrowOptions{}.noise_sigmas;
   double refine_c = reco::GrowOptions{}.refine_c;
   bool print_segments = false;
+  std::string click = "corner";  // the click pattern: corner or wall (see the top of the file)
 };
 
 // Where `plane` passes the limit corner along the limit plane's normal, towards the room's
@@ -409,6 +418,22 @@ void printSegments(double noise_mm, std::uint32_t repetition, const TruthCorner&
   }
 }
 
+// Where the user clicks near `corner` (--click; the top of the file). The box planes' normals
+// point into the room.
+// `clicked_wall` (0 to 2) picks the corner's wall for the wall pattern.
+Eigen::Vector3d clickNear(const std::string& pattern, const TruthCorner& corner, std::uint32_t clicked_wall,
+                          const Truth& truth, double seed_radius_m) {
+  Eigen::Vector3d along = Eigen::Vector3d::Zero();
+  if (pattern == "corner") {
+    for (std::uint32_t plane : corner.planes) along += truth.planes[plane].normal;
+    return corner.position + std::min(kClickInset, seed_radius_m / 3.0) * along;
+  }
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    if (i != clicked_wall) along += truth.planes[corner.planes[i]].normal;
+  }
+  return corner.position + std::min(kWallClickOffset, seed_radius_m / 2.0) * along;
+}
+
 std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std::uint32_t repetition) {
   char name[96];
   std::snprintf(name, sizeof name, "plumb-eval-%d-%g-%u", static_cast<int>(::getpid()), noise_mm, repetition);
@@ -445,13 +470,10 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
   const double plane_threshold_m =
       std::max(reco::ParameterConstants{}.plane_threshold_m, settings.tp_sigmas * noise_mm * 1e-3);
   std::vector<Trial> trials;
-  for (const TruthCorner& corner : truth.room_corners) {
+  for (std::uint32_t c = 0; c < truth.room_corners.size(); ++c) {
+    const TruthCorner& corner = truth.room_corners[c];
     std::array<reco::Plane, 3> fitted;
-    Eigen::Vector3d inward = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < 3; ++i) {
-      fitted[i] = regressions[corner.planes[i]].fit();
-      inward += truth.planes[corner.planes[i]].normal;
-    }
+    for (std::size_t i = 0; i < 3; ++i) fitted[i] = regressions[corner.planes[i]].fit();
     const std::optional<Eigen::Vector3d> limit_corner = intersect(fitted, corner.position);
     if (!limit_corner) throw Error("the least-squares walls of corner " + std::to_string(corner.id) + " do not meet");
     const double limit_mm = (*limit_corner - corner.position).norm() * 1e3;
@@ -464,8 +486,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
       const double seed_radius_m =
           parametersFor(detailLevel(detail), corner.position, *octree, plane_threshold_m, settings.tp_from_data)
               .seed_radius_m;
-      // The box planes' normals point into the room, so their sum is the inward diagonal.
-      const Eigen::Vector3d click = corner.position + std::min(kClickInset, seed_radius_m / 3.0) * inward;
+      const Eigen::Vector3d click = clickNear(settings.click, corner, c % 3, truth, seed_radius_m);
       const reco::GrowParameters parameters =
           parametersFor(detailLevel(detail), click, *octree, plane_threshold_m, settings.tp_from_data);
       reco::GrowOptions options;
@@ -747,6 +768,9 @@ int main(int argc, char** argv) {
   app.add_option("--refine-c", settings.refine_c,
                  "The final robust fit's window in robust standard deviations (0: the least-squares fit)")
       ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--click", settings.click, "Click pattern: corner (0.1 m inside it) or wall (on a wall, 0.3 m from the corner's two others)")
+      ->check(CLI::IsMember({"corner", "wall"}))
       ->capture_default_str();
   app.add_flag("--print-segments", settings.print_segments,
                "Print each grow's segments against the limit planes (to standard error)");
