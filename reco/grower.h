@@ -142,6 +142,13 @@ class Grower {
   double seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
                         double window) const;
   std::vector<SeedPlane> seedPlanesMeasuringThreshold(std::span<const Eigen::Vector3d> points, SeedOptions options);
+  std::vector<SeedPlane> findPlanes(std::span<const Eigen::Vector3d> points, const SeedOptions& options);
+  std::uint32_t seedSampleLevel(std::uint32_t finest) const;
+  std::vector<SeedPlane> seedFromSample(std::uint32_t sample_level, std::uint32_t cell_level,
+                                        const SeedOptions& options);
+  std::vector<SeedPlane> pointsOnPlanes(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
+                                        double threshold);
+  void forgetCells();
   void adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes);
   void seed();
   void fillSnapshot(bool final);
@@ -184,6 +191,10 @@ class Grower {
   void refine();
 
   static constexpr std::uint64_t kMinFrontSamples = 16;
+  // The seed finds its planes on a sample of the sphere no finer than r_s / this (seed): a few
+  // thousand points on the surfaces through it, enough for RANSAC and the noise, found and
+  // published within milliseconds whatever the cloud's depth.
+  static constexpr double kSeedSampleSpacings = 32.0;
   // Cells at least this many r wide (seed): at the octree's own spacing they are 64 r wide.
   static constexpr double kMinCellRadii = 8.0;
   // A cell's own search radius is at least r / kMaxRadiusShrink (indexCell).

@@ -145,6 +145,46 @@ TEST(RegionGrower, TwoPlanesAtRightAnglesGrowApart) {
   EXPECT_LE(result.mean_neighbour_distance, parameters.search_radius_m);
 }
 
+// Three walls of a corner, 1.5 m square, 1 mm noise, 100,000 points each (4.7 mm apart); a click
+// 0.1 m inside the corner at full detail (the deepest level's spacing). The seed sphere holds
+// tens of thousands of points there: the planes are found on a sample of it at r_s / 32 and
+// shown at once, with their corner, before the sphere is gathered at full detail.
+TEST(RegionGrower, AFullDetailSeedShowsItsPlanesFromASampleFirst) {
+  test::TempDirectory dir;
+  const std::vector<Patch> patches{{kUtm, {1.5, 0, 0}, {0, 1.5, 0}},
+                                   {kUtm, {0, 1.5, 0}, {0, 0, 1.5}},
+                                   {kUtm, {0, 0, 1.5}, {1.5, 0, 0}}};
+  const auto octree = buildPatches(dir, patches, 300'000);
+  lod::NodeCache cache(octree, 256 << 20);
+  const double finest = octree->spacing(octree->header().depth);
+  const GrowParameters parameters =
+      parametersForDensity(kUtm + Eigen::Vector3d(0.1, 0.1, 0.1), std::pow(finest, -3.0), 0.5);
+  std::vector<GrowSnapshot> snapshots;
+  const GrowSnapshot result =
+      growRegions(cache, parameters, {}, [&](const GrowSnapshot& s) { snapshots.push_back(s); });
+
+  ASSERT_TRUE(result.converged);
+  ASSERT_EQ(result.segments.size(), 3u);
+  ASSERT_EQ(result.corners.size(), 1u);
+  EXPECT_LT((result.corners[0].position - kUtm).norm(), 0.0005);
+  ASSERT_GE(snapshots.size(), 2u);
+  const auto total = [](const GrowSnapshot& s) {
+    std::uint64_t points = 0;
+    for (const SegmentSnapshot& segment : s.segments) points += segment.points;
+    return points;
+  };
+  // The first snapshot: the three planes of the sample and their corner.
+  const GrowSnapshot& first = snapshots.front();
+  ASSERT_EQ(first.segments.size(), 3u);
+  ASSERT_EQ(first.corners.size(), 1u);
+  EXPECT_LT((first.corners[0].position - kUtm).norm(), 0.003);
+  for (const SegmentSnapshot& segment : first.segments) EXPECT_TRUE(segment.outline);
+  // A sample: a small share of the sphere's points at full detail, which the next one holds.
+  std::printf("first snapshot %llu points, the next %llu\n", static_cast<unsigned long long>(total(first)),
+              static_cast<unsigned long long>(total(snapshots[1])));
+  EXPECT_LT(4 * total(first), total(snapshots[1]));
+}
+
 //   x = 0      x = 0.1
 //     |          |      a 10 cm thick wall: two faces, 3 m x 2.5 m each, 2 cm plane threshold
 //     |  (wall)  |
