@@ -45,7 +45,7 @@ void Grower::indexCell(CellState& state) const {
   const std::uint32_t per_cell = state.by_grid.medianCellPoints();
   if (per_cell == 0) return;
   const double spacing = radius_ / std::sqrt(static_cast<double>(per_cell));
-  const double radius = std::max(2.0 * spacing, radius_ / kMaxRadiusShrink);
+  const double radius = std::max(reachFor(spacing), radius_ / kMaxRadiusShrink);
   if (radius >= 0.5 * radius_) return;
   state.radius = radius;
   state.grid = PointGrid(parameters_.seed, radius);

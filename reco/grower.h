@@ -149,6 +149,7 @@ class Grower {
   std::vector<SeedPlane> pointsOnPlanes(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
                                         double threshold);
   void forgetCells();
+  double reachFor(double spacing) const;
   void adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points, const std::vector<SeedPlane>& planes);
   void seed();
   void fillSnapshot(bool final);
@@ -195,6 +196,8 @@ class Grower {
   // thousand points on the surfaces through it, enough for RANSAC and the noise, found and
   // published within milliseconds whatever the cloud's depth.
   static constexpr double kSeedSampleSpacings = 32.0;
+  // reachFor: r^3 = kSlabReach sigma s^2 gives a point in a noisy slab 4 pi neighbours within r.
+  static constexpr double kSlabReach = 4.0 * M_PI / 1.18;
   // Cells at least this many r wide (seed): at the octree's own spacing they are 64 r wide.
   static constexpr double kMinCellRadii = 8.0;
   // A cell's own search radius is at least r / kMaxRadiusShrink (indexCell).
