@@ -211,6 +211,13 @@ class Grower {
   // 0.18 r. 0.3 r keeps nine in ten inside and a fifth of those on the border.
   static constexpr double kInsideOffset = 0.3;
   static constexpr std::uint32_t kMinAroundPoints = 4;
+  // refine's last fit leaves out the points near a segment's border that lie to one side of its
+  // plane (oneSidedBorderPoints): within kBorderBandSigmas robust sigmas of the border (and a
+  // cell), where the mean offset of a cell and its neighbours is over kOneSidedZ standard errors
+  // and kOneSidedSigmas sigmas.
+  static constexpr double kBorderBandSigmas = 6.0;
+  static constexpr double kOneSidedZ = 3.0;
+  static constexpr double kOneSidedSigmas = 0.25;
   static constexpr std::uint32_t kMinContinuityPoints = 4;
   // A floor seen at grazing angles needs a bridge per scan line until it reaches denser ground;
   // this bounds the work where a segment keeps finding a point or two beyond r.

@@ -38,9 +38,18 @@ struct Raster {
 
 }  // namespace
 
-std::vector<bool> interiorPoints(const Plane& plane, std::span<const Eigen::Vector3d> points, double step) {
-  std::vector<bool> interior(points.size(), false);
-  if (points.empty() || !plane.valid || !(step > 0.0)) return interior;
+namespace {
+
+// The closed raster of the points' projections and each held cell's chessboard distance to the
+// nearest empty cell (cellsFromBorder).
+struct BorderRaster {
+  std::size_t width = 0;
+  std::vector<std::uint32_t> from_border;  // per cell; 0: empty
+  std::vector<std::size_t> cell_of;        // per point
+};
+
+BorderRaster borderRaster(const Plane& plane, std::span<const Eigen::Vector3d> points, double step) {
+  BorderRaster result;
   std::vector<Eigen::Vector2d> uv(points.size());
   Eigen::Vector2d low = Eigen::Vector2d::Constant(INFINITY);
   Eigen::Vector2d high = Eigen::Vector2d::Constant(-INFINITY);
@@ -61,15 +70,83 @@ std::vector<bool> interiorPoints(const Plane& plane, std::span<const Eigen::Vect
   raster.width = static_cast<std::size_t>(cellsAcross(high.x() - low.x()));
   raster.height = static_cast<std::size_t>(cellsAcross(high.y() - low.y()));
   raster.cells.assign(raster.width * raster.height, 0);
-  std::vector<std::size_t> cell_of(points.size());
+  result.cell_of.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto x = static_cast<std::size_t>(std::floor((uv[i].x() - low.x()) / step) + kMargin);
     const auto y = static_cast<std::size_t>(std::floor((uv[i].y() - low.y()) / step) + kMargin);
-    cell_of[i] = y * raster.width + x;
-    raster.cells[cell_of[i]] = 1;
+    result.cell_of[i] = y * raster.width + x;
+    raster.cells[result.cell_of[i]] = 1;
   }
-  const Raster inner = raster.filtered(true).filtered(false).filtered(false);
-  for (std::size_t i = 0; i < points.size(); ++i) interior[i] = inner.cells[cell_of[i]] != 0;
+  const Raster closed = raster.filtered(true).filtered(false);
+  // The chessboard distance of each held cell to the nearest empty one, in two passes: each cell
+  // takes one more than the least of its neighbours already passed. The margins are empty.
+  const std::size_t w = closed.width;
+  result.width = w;
+  std::vector<std::uint32_t>& cells = result.from_border;
+  cells.assign(closed.cells.size(), 0);
+  for (std::size_t y = 1; y + 1 < closed.height; ++y) {
+    for (std::size_t x = 1; x + 1 < w; ++x) {
+      const std::size_t c = y * w + x;
+      if (!closed.cells[c]) continue;
+      cells[c] = 1 + std::min({cells[c - 1], cells[c - w - 1], cells[c - w], cells[c - w + 1]});
+    }
+  }
+  for (std::size_t y = closed.height - 2; y >= 1; --y) {
+    for (std::size_t x = w - 2; x >= 1; --x) {
+      const std::size_t c = y * w + x;
+      if (!closed.cells[c]) continue;
+      cells[c] = std::min(cells[c], 1 + std::min({cells[c + 1], cells[c + w + 1], cells[c + w], cells[c + w - 1]}));
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> cellsFromBorder(const Plane& plane, std::span<const Eigen::Vector3d> points, double step) {
+  std::vector<std::uint32_t> distance(points.size(), 0);
+  if (points.empty() || !plane.valid || !(step > 0.0)) return distance;
+  const BorderRaster raster = borderRaster(plane, points, step);
+  for (std::size_t i = 0; i < points.size(); ++i) distance[i] = raster.from_border[raster.cell_of[i]];
+  return distance;
+}
+
+std::vector<bool> oneSidedBorderPoints(const Plane& plane, std::span<const Eigen::Vector3d> points, double step,
+                                       std::uint32_t band_cells, double sigma, double z, double min_offset) {
+  std::vector<bool> one_sided(points.size(), false);
+  if (points.empty() || !plane.valid || !(step > 0.0) || !(sigma > 0.0)) return one_sided;
+  const BorderRaster raster = borderRaster(plane, points, step);
+  const std::size_t w = raster.width;
+  std::vector<double> sum(raster.from_border.size(), 0.0);
+  std::vector<std::uint32_t> count(raster.from_border.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    sum[raster.cell_of[i]] += plane.signedDistance(points[i]);
+    ++count[raster.cell_of[i]];
+  }
+  std::vector<std::int8_t> verdict(raster.from_border.size(), -1);  // -1 not yet judged, 0 no, 1 yes
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::size_t c = raster.cell_of[i];
+    if (raster.from_border[c] > band_cells) continue;
+    if (verdict[c] < 0) {
+      // The cell and its eight neighbours (the margins keep them inside the raster).
+      double s = 0.0;
+      std::uint32_t n = 0;
+      for (std::size_t k : {c - w - 1, c - w, c - w + 1, c - 1, c, c + 1, c + w - 1, c + w, c + w + 1}) {
+        s += sum[k];
+        n += count[k];
+      }
+      const double mean = s / static_cast<double>(n);
+      verdict[c] = std::abs(mean) > std::max(z * sigma / std::sqrt(static_cast<double>(n)), min_offset) ? 1 : 0;
+    }
+    one_sided[i] = verdict[c] == 1;
+  }
+  return one_sided;
+}
+
+std::vector<bool> interiorPoints(const Plane& plane, std::span<const Eigen::Vector3d> points, double step) {
+  const std::vector<std::uint32_t> distance = cellsFromBorder(plane, points, step);
+  std::vector<bool> interior(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) interior[i] = distance[i] >= 2;
   return interior;
 }
 
