@@ -147,7 +147,7 @@ TEST(RegionGrower, TwoPlanesAtRightAnglesGrowApart) {
 
 // Three walls of a corner, 1.5 m square, 1 mm noise, 100,000 points each (4.7 mm apart); a click
 // 0.1 m inside the corner at full detail (the deepest level's spacing). The seed sphere holds
-// tens of thousands of points there: the planes are found on a sample of it at r_s / 32 and
+// tens of thousands of points there: the planes are found on a sample of it at r_s / 16 and
 // shown at once, with their corner, before the sphere is gathered at full detail.
 TEST(RegionGrower, AFullDetailSeedShowsItsPlanesFromASampleFirst) {
   test::TempDirectory dir;
