@@ -208,11 +208,13 @@ void Viewer::startLoading() {
   jobs_.submit(jobs::Priority::background, "load cloud", [this, progress, report, cloud](const jobs::CancelToken&) {
     try {
       std::string path = cloud, temporary;
-      std::optional<view::Camera> home = options_.camera;
+      // The home view: the one given, else the demo's. (Assigned once: GCC 12 warned that an
+      // optional Camera assigned on one branch "may be used uninitialized" when copied.)
+      std::optional<view::Camera> demo_home;
       if (cloud.empty()) {
         const DemoScan demo = ensureDemoScan(report);
         path = demo.octree.string();
-        if (!home) home = demo.home;
+        demo_home = demo.home;
       } else {
         const std::string name = std::filesystem::path(cloud).filename().string();
         const auto build = [&](const std::string& output, std::uint64_t stride, const std::string& what) {
@@ -245,13 +247,14 @@ void Viewer::startLoading() {
           const std::string preview = stem + "-preview.plumb";
           build(preview, declared / kPreviewPoints, "preview of ");
           std::shared_ptr<const lod::Octree> octree = lod::Octree::open(preview);
-          jobs_.post([this, octree, preview, home] { openCloud(octree, preview, home, true); });
+          jobs_.post([this, octree, preview, home = options_.camera] { openCloud(octree, preview, home, true); });
         }
         temporary = stem + ".plumb";
         build(temporary, 1, "importing ");
         path = temporary;
       }
       std::shared_ptr<const lod::Octree> octree = lod::Octree::open(path);
+      const std::optional<view::Camera> home = options_.camera ? options_.camera : demo_home;
       jobs_.post([this, octree, temporary, home, progress] {
         openCloud(octree, temporary, home);
         const std::scoped_lock lock(progress->mutex);
