@@ -130,7 +130,13 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
       {{"click_world", json::array({on_wall.x(), on_wall.y(), on_wall.z()})}},
       {{"wait", "frames"}, {"count", 2}},
   });
-  ASSERT_EQ(plumb::test::runViewerSession(dir, "'" + ply.string() + "' --camera '" + camera.string() + "'", steps), 0);
+  // Built by appending: GCC 12 -O3 warns (-Wrestrict) on "'" + std::string.
+  std::string arguments = "'";
+  arguments += ply.string();
+  arguments += "' --camera '";
+  arguments += camera.string();
+  arguments += "'";
+  ASSERT_EQ(plumb::test::runViewerSession(dir, arguments, steps), 0);
   const json dump = readJson(scene);
   ASSERT_GE(dump.at("segments").size(), 3u);
   double nearest_m = INFINITY;
