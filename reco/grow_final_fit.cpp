@@ -201,17 +201,16 @@ void Grower::refine() {
   // those out would lose the lever that holds the tilt back.
   std::vector<Held> members = held();
   for (std::uint32_t s = 0; s < n; ++s) {
-    const std::vector<bool> interior = interiorPoints(planes_[s], members[s].points, radius_);
+    const BorderRaster raster = borderRaster(planes_[s], members[s].points, radius_);
     const double band = kBorderBandSigmas * scales[s];
     // One cell more than the band: the outermost held cell may reach in a fraction of a cell only.
     const auto band_cells = 1 + static_cast<std::uint32_t>(std::ceil(band / radius_));
-    const std::vector<bool> one_sided =
-        oneSidedBorderPoints(planes_[s], members[s].points, radius_, band_cells, scales[s], kOneSidedZ,
-                             kOneSidedSigmas * scales[s]);
-    for (std::size_t j = 0; j < interior.size(); ++j) {
+    const std::vector<bool> one_sided = oneSidedBorderPoints(raster, planes_[s], members[s].points, band_cells,
+                                                             scales[s], kOneSidedZ, kOneSidedSigmas * scales[s]);
+    for (std::size_t j = 0; j < one_sided.size(); ++j) {
       if (one_sided[j]) {
         members[s].weights[j] = 0.0;
-      } else if (interior[j]) {
+      } else if (raster.interior(j)) {
         members[s].weights[j] = 1.0;
       }
     }

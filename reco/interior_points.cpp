@@ -38,18 +38,9 @@ struct Raster {
 
 }  // namespace
 
-namespace {
-
-// The closed raster of the points' projections and each held cell's chessboard distance to the
-// nearest empty cell (cellsFromBorder).
-struct BorderRaster {
-  std::size_t width = 0;
-  std::vector<std::uint32_t> from_border;  // per cell; 0: empty
-  std::vector<std::size_t> cell_of;        // per point
-};
-
 BorderRaster borderRaster(const Plane& plane, std::span<const Eigen::Vector3d> points, double step) {
   BorderRaster result;
+  if (points.empty() || !plane.valid || !(step > 0.0)) return result;
   std::vector<Eigen::Vector2d> uv(points.size());
   Eigen::Vector2d low = Eigen::Vector2d::Constant(INFINITY);
   Eigen::Vector2d high = Eigen::Vector2d::Constant(-INFINITY);
@@ -101,21 +92,11 @@ BorderRaster borderRaster(const Plane& plane, std::span<const Eigen::Vector3d> p
   return result;
 }
 
-}  // namespace
-
-std::vector<std::uint32_t> cellsFromBorder(const Plane& plane, std::span<const Eigen::Vector3d> points, double step) {
-  std::vector<std::uint32_t> distance(points.size(), 0);
-  if (points.empty() || !plane.valid || !(step > 0.0)) return distance;
-  const BorderRaster raster = borderRaster(plane, points, step);
-  for (std::size_t i = 0; i < points.size(); ++i) distance[i] = raster.from_border[raster.cell_of[i]];
-  return distance;
-}
-
-std::vector<bool> oneSidedBorderPoints(const Plane& plane, std::span<const Eigen::Vector3d> points, double step,
-                                       std::uint32_t band_cells, double sigma, double z, double min_offset) {
+std::vector<bool> oneSidedBorderPoints(const BorderRaster& raster, const Plane& plane,
+                                       std::span<const Eigen::Vector3d> points, std::uint32_t band_cells,
+                                       double sigma, double z, double min_offset) {
   std::vector<bool> one_sided(points.size(), false);
-  if (points.empty() || !plane.valid || !(step > 0.0) || !(sigma > 0.0)) return one_sided;
-  const BorderRaster raster = borderRaster(plane, points, step);
+  if (raster.cell_of.empty() || !(sigma > 0.0)) return one_sided;
   const std::size_t w = raster.width;
   std::vector<double> sum(raster.from_border.size(), 0.0);
   std::vector<std::uint32_t> count(raster.from_border.size(), 0);
@@ -144,9 +125,9 @@ std::vector<bool> oneSidedBorderPoints(const Plane& plane, std::span<const Eigen
 }
 
 std::vector<bool> interiorPoints(const Plane& plane, std::span<const Eigen::Vector3d> points, double step) {
-  const std::vector<std::uint32_t> distance = cellsFromBorder(plane, points, step);
+  const BorderRaster raster = borderRaster(plane, points, step);
   std::vector<bool> interior(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) interior[i] = distance[i] >= 2;
+  for (std::size_t i = 0; i < points.size(); ++i) interior[i] = raster.interior(i);
   return interior;
 }
 

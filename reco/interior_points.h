@@ -24,19 +24,30 @@ namespace plumb::reco {
 
 inline constexpr std::size_t kMaxInteriorCells = std::size_t{1} << 24;
 
+// The closed raster of a planar point set: for each of its cells the chessboard distance to the
+// nearest empty cell (1 for the outermost cells, 2 for the ring inside them, and so on; 0 for an
+// empty cell), and each point's cell. Empty for a degenerate plane or step, where every point
+// lies 0 cells from the border.
+struct BorderRaster {
+  std::size_t width = 0;                   // cells across; rows follow each other
+  std::vector<std::uint32_t> from_border;  // per cell
+  std::vector<std::size_t> cell_of;        // per point
+  std::uint32_t cellsFromBorder(std::size_t point) const { return cell_of.empty() ? 0 : from_border[cell_of[point]]; }
+  bool interior(std::size_t point) const { return cellsFromBorder(point) >= 2; }
+};
+BorderRaster borderRaster(const Plane& plane, std::span<const Eigen::Vector3d> points, double step);
+
+// Per point: BorderRaster::interior.
 std::vector<bool> interiorPoints(const Plane& plane, std::span<const Eigen::Vector3d> points, double step);
 
-// Per point: how many cells of the closed raster its cell lies from the border, by the chessboard
-// distance to the nearest empty cell: 1 for the outermost cells, 2 for the ring inside them, and
-// so on (a point is interior from 2). 0 only for a degenerate plane or step.
-std::vector<std::uint32_t> cellsFromBorder(const Plane& plane, std::span<const Eigen::Vector3d> points, double step);
-
-// Per point: whether it lies within `band_cells` cells of the border (cellsFromBorder) where the
-// points of its cell and the eight around it lie to one side of the plane: their mean residual
-// more than z standard errors (sigma / sqrt(n)) and more than `min_offset` from 0. The strip of a
-// surface that meets the plane there does; a clean cell passes whichever side it leans to, and
-// so does a cell a little off a plane that the growth tilted a little.
-std::vector<bool> oneSidedBorderPoints(const Plane& plane, std::span<const Eigen::Vector3d> points, double step,
-                                       std::uint32_t band_cells, double sigma, double z, double min_offset);
+// Per point of `points` (those `raster` was drawn from, on `plane`): whether it lies within
+// `band_cells` cells of the border where the points of its cell and the eight around it lie to
+// one side of the plane: their mean residual more than z standard errors (sigma / sqrt(n)) and
+// more than `min_offset` from 0. The strip of a surface that meets the plane there does; a clean
+// cell passes whichever side it leans to, and so does a cell a little off a plane that the growth
+// tilted a little.
+std::vector<bool> oneSidedBorderPoints(const BorderRaster& raster, const Plane& plane,
+                                       std::span<const Eigen::Vector3d> points, std::uint32_t band_cells,
+                                       double sigma, double z, double min_offset);
 
 }  // namespace plumb::reco

@@ -37,6 +37,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <span>
 
 #include "reco/grower.h"
 #include "reco/noise_threshold.h"
@@ -45,6 +47,26 @@
 
 namespace plumb::reco {
 namespace detail {
+namespace {
+
+// How a snapshot draws a segment's outline and the edges and corners between segments, for a
+// grow whose search radius is `radius`: the outline's alpha is r (its raster half that), and
+// points within 2r of a line or corner count as near it.
+std::shared_ptr<const PlaneOutline> drawOutline(const Plane& plane, std::span<const Eigen::Vector3d> points,
+                                                double radius) {
+  OutlineOptions outline;
+  outline.alpha_m = radius;
+  outline.cell_m = radius / 2.0;
+  return std::make_shared<const PlaneOutline>(outlineOnPlane(plane, points, outline));
+}
+
+Features drawFeatures(std::span<const SegmentGeometry> segments, double radius) {
+  FeatureOptions features;
+  features.search_radius = radius;
+  return findEdgesAndCorners(segments, features);
+}
+
+}  // namespace
 
 Grower::Grower(lod::NodeCache& cache, const GrowParameters& parameters, const GrowOptions& options,
                const GrowProgress& progress)
@@ -207,15 +229,10 @@ std::vector<SeedPlane> Grower::seedFromSample(std::uint32_t sample_level, std::u
     SegmentSnapshot& segment = snapshot_.segments[s];
     segment.plane = planes[s].plane;
     segment.points = inliers[s].size();
-    OutlineOptions outline;
-    outline.alpha_m = reach;
-    outline.cell_m = reach / 2.0;
-    segment.outline = std::make_shared<const PlaneOutline>(outlineOnPlane(planes[s].plane, inliers[s], outline));
+    segment.outline = drawOutline(planes[s].plane, inliers[s], reach);
     geometry.push_back({planes[s].plane, inliers[s]});
   }
-  FeatureOptions features;
-  features.search_radius = reach;
-  Features found = findEdgesAndCorners(geometry, features);
+  Features found = drawFeatures(geometry, reach);
   snapshot_.edges = std::move(found.edges);
   snapshot_.corners = std::move(found.corners);
   snapshot_.elapsed_ms = std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
@@ -270,15 +287,15 @@ void Grower::seed() {
   seed_options.drop_unstable = options_.drop_unstable;
   seed_options.seed = options_.random_seed;
   seed_options.picked = parameters_.seed;
+  const bool from_sample = sample_level < point_level;
   gathering_seed_ = true;
   std::vector<SeedPlane> planes;
-  if (sample_level < point_level) planes = seedFromSample(sample_level, std::min(sample_level, gather_level), seed_options);
+  if (from_sample) planes = seedFromSample(sample_level, std::min(sample_level, gather_level), seed_options);
   SeedSphere sphere;
   point_levels_ = point_level - gather_level;
   claimSeedCells(gather_level, sphere);
   std::vector<Eigen::Vector3d>& points = sphere.points;
-  planes = sample_level < point_level ? pointsOnPlanes(points, planes, parameters_.plane_threshold_m)
-                                      : findPlanes(points, seed_options);
+  planes = from_sample ? pointsOnPlanes(points, planes, parameters_.plane_threshold_m) : findPlanes(points, seed_options);
   snapshot_.plane_threshold_m = parameters_.plane_threshold_m;
   adaptToDataSpacing(points, planes);
   gathering_seed_ = false;
@@ -391,19 +408,14 @@ void Grower::fillSnapshot(bool final) {
     if (!planes_[s].valid) {
       segment.outline.reset();
     } else if (final || segment.points >= outlined_count_[s] + outlined_count_[s] / 4 + 1) {
-      OutlineOptions outline;
-      outline.alpha_m = radius_;
-      outline.cell_m = radius_ / 2.0;
-      segment.outline = std::make_shared<const PlaneOutline>(outlineOnPlane(planes_[s], segment_points_[s], outline));
+      segment.outline = drawOutline(planes_[s], segment_points_[s], radius_);
       outlined_count_[s] = segment.points;
     }
   }
   if (final || total >= featured_total_ + featured_total_ / 4 + 1) {
     std::vector<SegmentGeometry> geometry;
     for (std::size_t s = 0; s < regressions_.size(); ++s) geometry.push_back({planes_[s], segment_points_[s]});
-    FeatureOptions features;
-    features.search_radius = radius_;
-    Features found = findEdgesAndCorners(geometry, features);
+    Features found = drawFeatures(geometry, radius_);
     snapshot_.edges = std::move(found.edges);
     snapshot_.corners = std::move(found.corners);
     featured_total_ = total;

@@ -93,7 +93,8 @@ TEST(InteriorPoints, OneSidedBorderCellsAreTheStripOfAMeetingSurface) {
   const Plane plane = wall.fit();
   // Cells of 4 cm hold about 30 points, a neighbourhood 270: a standard error of 1.2 mm.
   constexpr double kStep = 0.04, kSigma = 0.02;
-  const std::vector<bool> one_sided = oneSidedBorderPoints(plane, points, kStep, 4, kSigma, 3.0, 0.25 * kSigma);
+  const std::vector<bool> one_sided =
+      oneSidedBorderPoints(borderRaster(plane, points, kStep), plane, points, 4, kSigma, 3.0, 0.25 * kSigma);
   ASSERT_EQ(one_sided.size(), points.size());
   std::size_t strip_out = 0, strip_count = 0, wall_out = 0, wall_away_from_foot = 0, wall_out_away = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
