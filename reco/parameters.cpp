@@ -3,7 +3,9 @@
 //   1. The picked point's depth in camera space; the size of one pixel there: for a perspective
 //      projection 2 * depth / (P11 * height), for an orthographic one 2 / (P11 * height).
 //   2. r_s = 10 % of the screen width at that depth (pixel size * viewport width * 0.1).
-//   3. d from the pixel size, logarithmic between the near and the far constants.
+//   3. d from the pixel size, logarithmic between the near and the far constants; where the
+//      data's spacing at the click is known, the near end is the data's own (every point where
+//      the pixel is as fine as the points are apart).
 //   4. r = 2 mean spacings at density d, the spacing being d^(-1/3).
 //   5. t_p is the user's setting, or by default measured by the grower from the seed planes'
 //      noise (noise_threshold.h).
@@ -57,13 +59,39 @@ GrowParameters parametersForDensity(const Eigen::Vector3d& seed, double density,
   return p;
 }
 
-GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstants& c) {
+namespace {
+
+// The density at `pixel`, falling logarithmically from `near_density` at `near_pixel` (and
+// finer) to `far_density` at `far_pixel` (and coarser).
+double logarithmicFall(double pixel, double near_pixel, double near_density, double far_pixel, double far_density) {
+  const double t = std::clamp(std::log(pixel / near_pixel) / std::log(far_pixel / near_pixel), 0.0, 1.0);
+  return near_density * std::pow(far_density / near_density, t);
+}
+
+}  // namespace
+
+double densityForPixel(double pixel, const ParameterConstants& c, const std::optional<DataAtClick>& data) {
+  if (!data || data->spacing_m <= 0.0 || data->full_density <= 0.0) {
+    return logarithmicFall(pixel, c.near_pixel_m, c.max_density, c.far_pixel_m, c.min_density);
+  }
+  // Where a pixel is no larger than the points are apart, the user sees each point: every one.
+  const double near_pixel = std::max(c.near_pixel_m, data->spacing_m);
+  if (pixel <= near_pixel) return data->full_density;
+  // Farther, from the data's own density down to the paper's far end. A sparse scan (points
+  // farther apart than far_pixel_m) still falls over one octave of pixel size, not in a step.
+  const double near_density =
+      std::clamp(std::pow(data->spacing_m, -3.0), std::min(c.max_density, data->full_density), data->full_density);
+  const double far_pixel = std::max(c.far_pixel_m, 2.0 * near_pixel);
+  return logarithmicFall(pixel, near_pixel, near_density, far_pixel, std::min(c.min_density, near_density));
+}
+
+GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstants& c,
+                                 const std::optional<DataAtClick>& data) {
   const double pixel = pixelSizeAt(view);
-  const double t = std::clamp(std::log(pixel / c.near_pixel_m) / std::log(c.far_pixel_m / c.near_pixel_m), 0.0, 1.0);
-  const double density = c.max_density * std::pow(c.min_density / c.max_density, t);
-  GrowParameters p =
-      parametersForDensity(view.picked, density, c.seed_fraction_of_width * pixel * view.viewport_width_px, c);
+  GrowParameters p = parametersForDensity(view.picked, densityForPixel(pixel, c, data),
+                                          c.seed_fraction_of_width * pixel * view.viewport_width_px, c);
   p.pixel_size_m = pixel;
+  if (data && data->spacing_m > 0.0 && data->full_density > 0.0) p.click_spacing_m = data->spacing_m;
   return p;
 }
 

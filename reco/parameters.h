@@ -4,6 +4,7 @@
 // docs/parameters.md explains the constants.
 
 #include <Eigen/Core>
+#include <optional>
 
 namespace plumb::reco {
 
@@ -33,6 +34,13 @@ struct ParameterConstants {
   bool plane_threshold_from_data = true;
 };
 
+// The cloud at a click (measured by dataAtClick, data_at_click.h): how far apart its points lie
+// there, and the density of the octree's deepest level (every point; --detail full).
+struct DataAtClick {
+  double spacing_m = 0.0;
+  double full_density = 0.0;
+};
+
 struct GrowParameters {
   Eigen::Vector3d seed;      // p_0, the picked point
   double seed_radius_m;      // r_s
@@ -42,6 +50,9 @@ struct GrowParameters {
   double plane_threshold_m;  // t_p, or where plane_threshold_from_data the start of its estimate
   bool plane_threshold_from_data = false;
   double pixel_size_m;  // the projected size of a pixel at the picked point, for display
+  // The data's spacing at the click that d followed (DataAtClick); 0 where d came from the
+  // paper's mapping alone or from a detail level.
+  double click_spacing_m = 0.0;
 };
 
 // The view of a 60-degree perspective camera on a 1920 x 1080 screen looking at `picked` from
@@ -50,15 +61,25 @@ struct GrowParameters {
 ViewAtClick viewFromDistance(const Eigen::Vector3d& picked, double distance);
 
 // The parameters for a click. The picked point must lie in front of a perspective camera.
-GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstants& constants = {});
+// Without `data`, d follows the paper's mapping alone (max_density at near_pixel_m down to
+// min_density at far_pixel_m). With it, detail follows the data: every point where the pixel is
+// as fine as the data's spacing or finer (or near_pixel_m, a wall from half a metre), and the
+// logarithmic fall from the data's own density there to min_density at far_pixel_m (or at twice
+// the data's spacing where that is farther). It never asks for fewer points than the paper's.
+GrowParameters parametersForView(const ViewAtClick& view, const ParameterConstants& constants = {},
+                                 const std::optional<DataAtClick>& data = std::nullopt);
+
+// d for a pixel of `pixel_m` at the click, as parametersForView maps it.
+double densityForPixel(double pixel_m, const ParameterConstants& constants, const std::optional<DataAtClick>& data);
 
 // The parameters for a wanted density (the --detail and --view-distance paths of plumb grow).
 GrowParameters parametersForDensity(const Eigen::Vector3d& seed, double density, double seed_radius_m,
                                     const ParameterConstants& constants = {});
 
 // The detail levels that override what the view implies (plumb grow --detail, the viewer's
-// Grow panel): low, medium and high are the mapping's far, middle (geometric mean) and near
-// densities; full is every point of the octree (`full_density`, its finest level's).
+// Grow panel): low, medium and high are the paper's far, middle (geometric mean) and near
+// densities, whatever the data; full is every point of the octree (`full_density`, its finest
+// level's).
 enum class Detail { kLow, kMedium, kHigh, kFull };
 double densityForDetail(Detail detail, const ParameterConstants& constants, double full_density);
 

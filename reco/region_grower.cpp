@@ -337,6 +337,7 @@ void Grower::seed() {
     refit(s);
   }
   if (!planes.empty()) publish();
+  snapshot_.seeded_ms = std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
 }
 
 // The noise of seed planes found within `window`: their inliers' residuals, pooled, leaving out

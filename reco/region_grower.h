@@ -105,6 +105,9 @@ struct GrowSnapshot {
   std::uint64_t bridges = 0;           // gaps wider than r that a starved segment crossed (bridge_gaps)
   double mean_neighbour_distance = 0;  // d_avg: mean distance from an added point to the point that reached it
   double elapsed_ms = 0;
+  // When the seed sphere at d's density was published with its planes (at full detail a sample's
+  // snapshot comes first), from the grow's start; set once the seed is done.
+  double seeded_ms = 0;
   bool converged = false;  // no cell adds anything any more
   bool cancelled = false;
 };

@@ -4,10 +4,14 @@
 // statistical limit (a least-squares fit of each wall on all its true points).
 //
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
-//                      [--details low,medium,high,full] [--jobs N] [--stations N]
+//                      [--details low,medium,high,full,view:D,paper:D...] [--jobs N] [--stations N]
 //                      [--grow-limit-s S] [--tp-sigmas K | --tp-from-data] [--noise-sigmas N]
 //                      [--full-repetitions N] [--click corner|wall]
 //                      [--refine-c C] [--print-segments]
+//
+// The named detail levels use the paper's mapping (and full every point); view:D is a click from
+// D metres whose detail follows the data at the click, as plumb grow and the viewer make it (its
+// grow time includes measuring the data there); paper:D the same click with the paper's mapping.
 //
 // For each noise level and repetition (the scanner's seed is the repetition, so reruns agree):
 //   1. simulate the room from both its stations at a UTM-like offset (as scripts/run does) into
@@ -51,6 +55,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/core/atomic_file.h"
@@ -59,6 +64,7 @@
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/lod/octree_builder.h"
+#include "reco/data_at_click.h"
 #include "reco/parameters.h"
 #include "reco/plane_regression.h"
 #include "reco/region_grower.h"
@@ -83,8 +89,9 @@ constexpr std::size_t kCacheBytes = std::size_t{256} << 20;
 
 struct DetailLevel {
   std::string name;
-  double view_distance_m;  // the camera distance whose automatic parameters this level uses
-  bool all_points;         // the octree's full density instead (plumb grow --detail full)
+  double view_distance_m;     // the camera distance whose automatic parameters this level uses
+  bool all_points;            // the octree's full density instead (plumb grow --detail full)
+  bool follows_data = false;  // the view's detail follows the data at the click (plumb grow, the viewer)
 };
 
 // The issue's detail levels: the automatic parameters (paper section 3.7) for a camera at 12 m,
@@ -97,22 +104,41 @@ const std::vector<DetailLevel>& detailLevels() {
   return levels;
 }
 
-const DetailLevel& detailLevel(const std::string& name) {
+// A named level; "view:D", a click from D metres whose detail follows the data, as
+// `plumb grow --view-distance D` and the viewer make it (issue 19, point 2); or "paper:D", the
+// same click with the paper's mapping alone.
+DetailLevel detailLevel(const std::string& name) {
   for (const DetailLevel& level : detailLevels()) {
     if (level.name == name) return level;
   }
-  throw Error("unknown detail '" + name + "': choose low, medium, high or full");
+  for (const std::string_view prefix : {"view:", "paper:"}) {
+    if (!name.starts_with(prefix)) continue;
+    const std::string number = name.substr(prefix.size());
+    std::size_t parsed = 0;
+    double distance = NAN;
+    try {
+      distance = std::stod(number, &parsed);
+    } catch (const std::exception&) {
+    }
+    if (parsed == number.size() && std::isfinite(distance) && distance >= 0.05 && distance <= 10'000.0) {
+      return {name, distance, false, prefix == "view:"};
+    }
+  }
+  throw Error("unknown detail '" + name +
+              "': choose low, medium, high, full, view:D or paper:D (D metres from 0.05 to 10000)");
 }
 
 // The grow's parameters for a click at `seed`, with the plane threshold `plane_threshold_m`, or
 // with the grower's own measure of it where `tp_from_data` (plumb grow without --tp).
+// `data` is the cloud at the click, for the levels whose detail follows it.
 reco::GrowParameters parametersFor(const DetailLevel& level, const Eigen::Vector3d& seed, const lod::Octree& octree,
-                                   double plane_threshold_m, bool tp_from_data) {
+                                   double plane_threshold_m, bool tp_from_data,
+                                   const std::optional<reco::DataAtClick>& data = std::nullopt) {
   reco::ParameterConstants constants;
   constants.plane_threshold_m = plane_threshold_m;
   constants.plane_threshold_from_data = tp_from_data;
   const reco::GrowParameters view =
-      reco::parametersForView(reco::viewFromDistance(seed, level.view_distance_m), constants);
+      reco::parametersForView(reco::viewFromDistance(seed, level.view_distance_m), constants, data);
   if (!level.all_points) return view;
   // Mirrors `plumb grow --detail full`, whose mapping lives inline in ui/cli/grow_command.cpp:
   // the density of the deepest level, with the seed radius of the default view.
@@ -487,8 +513,15 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
           parametersFor(detailLevel(detail), corner.position, *octree, plane_threshold_m, settings.tp_from_data)
               .seed_radius_m;
       const Eigen::Vector3d click = clickNear(settings.click, corner, c % 3, truth, seed_radius_m);
+      const DetailLevel level = detailLevel(detail);
+      // Measuring the data at the click is part of the click's time (plumb grow reports it).
+      const auto clicked = std::chrono::steady_clock::now();
+      std::optional<reco::DataAtClick> data;
+      if (level.follows_data) data = reco::dataAtClick(cache, click);
+      const double measure_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clicked).count();
       const reco::GrowParameters parameters =
-          parametersFor(detailLevel(detail), click, *octree, plane_threshold_m, settings.tp_from_data);
+          parametersFor(level, click, *octree, plane_threshold_m, settings.tp_from_data, data);
       reco::GrowOptions options;
       options.random_seed = repetition;
       options.noise_sigmas = settings.noise_sigmas;
@@ -518,7 +551,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
                   .error_mm = std::nullopt,
                   .nearest_mm = std::nullopt,
                   .limit_mm = limit_mm,
-                  .grow_ms = result.elapsed_ms,
+                  .grow_ms = measure_ms + result.elapsed_ms,
                   .points = points,
                   .true_points = true_points,
                   .segments = result.segments.size(),
@@ -548,6 +581,7 @@ struct SummaryRow {
   double noise_mm = 0;
   std::string detail;
   std::size_t detail_index = 0;  // position in low, medium, high, full: the x of the detail plot
+  double view_distance_m = 0;    // the camera distance of the level
   std::size_t trials = 0, lost = 0, timed_out = 0;
   double median_mm = NAN, p25_mm = NAN, p75_mm = NAN;
   double median_limit_mm = NAN;
@@ -561,6 +595,8 @@ SummaryRow summarise(const std::vector<Trial>& trials, double noise_mm, const st
   SummaryRow row;
   row.noise_mm = noise_mm;
   row.detail = detail;
+  row.detail_index = detailLevels().size();  // view:D levels after the named ones
+  row.view_distance_m = detailLevel(detail).view_distance_m;
   for (std::size_t i = 0; i < detailLevels().size(); ++i) {
     if (detailLevels()[i].name == detail) row.detail_index = i;
   }
@@ -635,13 +671,13 @@ std::string trialsCsv(const std::vector<Trial>& trials) {
 std::string summaryCsv(const std::vector<SummaryRow>& rows) {
   std::string csv =
       "noise_mm,detail,detail_index,trials,lost,timed_out,median_mm,p25_mm,p75_mm,median_limit_mm,ratio_to_limit,"
-      "median_spacing_mm,median_grow_ms,target,target_met\n";
+      "median_spacing_mm,median_grow_ms,target,target_met,view_distance_m\n";
   for (const SummaryRow& r : rows) {
     csv += number(r.noise_mm) + "," + r.detail + "," + std::to_string(r.detail_index) + "," + std::to_string(r.trials) +
            "," + std::to_string(r.lost) + "," + std::to_string(r.timed_out) + "," + number(r.median_mm) + "," +
            number(r.p25_mm) + "," + number(r.p75_mm) + "," + number(r.median_limit_mm) + "," +
            number(r.median_mm / r.median_limit_mm) + "," + number(r.median_spacing_mm) + "," +
-           number(r.median_grow_ms, "%.3f") + "," + r.target + "," + r.met + "\n";
+           number(r.median_grow_ms, "%.3f") + "," + r.target + "," + r.met + "," + number(r.view_distance_m) + "\n";
   }
   return csv;
 }
@@ -738,9 +774,10 @@ int main(int argc, char** argv) {
   app.add_option("--points", settings.points, "Points per simulated scan")
       ->check(CLI::Range(std::uint64_t{1000}, std::uint64_t{100'000'000}))
       ->capture_default_str();
-  app.add_option("--details", settings.details, "Detail levels: low, medium, high, full")
+  app.add_option("--details", settings.details,
+                 "Detail levels: low, medium, high, full (the paper's mapping), view:D (a view from D metres "
+                 "whose detail follows the data) or paper:D (the same view, the paper's mapping)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"low", "medium", "high", "full"}))
       ->capture_default_str();
   app.add_option("--jobs", settings.jobs, "Repetitions processed at once (each holds one scan)")
       ->check(CLI::Range(1u, 256u))

@@ -70,6 +70,54 @@ TEST(Parameters, DensityFallsLogarithmicallyWithDistanceBetweenItsLimits) {
   EXPECT_NEAR(d3 / d6, d6 / d12, 1e-9);
 }
 
+TEST(Parameters, DetailFollowsTheDataDownToEveryPointWherePixelsAreAsFineAsThePoints) {
+  const ParameterConstants c;
+  const DataAtClick scan{.spacing_m = 0.005, .full_density = 1e10};
+  EXPECT_EQ(densityForPixel(0.0049, c, scan), scan.full_density);
+  EXPECT_EQ(densityForPixel(0.005, c, scan), scan.full_density);
+  // Just coarser than the points: the data's own density, then the logarithmic fall to the
+  // paper's far end.
+  EXPECT_NEAR(densityForPixel(0.005001, c, scan) / std::pow(0.005, -3.0), 1.0, 0.01);
+  EXPECT_NEAR(densityForPixel(0.02, c, scan), c.min_density, 1e-9);
+  EXPECT_NEAR(densityForPixel(0.5, c, scan), c.min_density, 1e-9);
+  const double d1 = densityForPixel(0.006, c, scan), d2 = densityForPixel(0.009, c, scan),
+               d3 = densityForPixel(0.0135, c, scan);
+  EXPECT_NEAR(d1 / d2, d2 / d3, 1e-9 * d1 / d2);
+  EXPECT_GT(d2, d3);
+  // Points finer than the near pixel: every point from half a metre (pixels of 0.5 mm) on.
+  const DataAtClick dense{.spacing_m = 0.0002, .full_density = 1e12};
+  EXPECT_EQ(densityForPixel(c.near_pixel_m, c, dense), dense.full_density);
+  EXPECT_LT(densityForPixel(1.1 * c.near_pixel_m, c, dense), dense.full_density);
+  // Points farther apart than the far pixel: every point up to their spacing, then one octave
+  // of fall.
+  const DataAtClick sparse{.spacing_m = 0.05, .full_density = 1e7};
+  EXPECT_EQ(densityForPixel(0.05, c, sparse), sparse.full_density);
+  EXPECT_GT(densityForPixel(0.07, c, sparse), c.min_density);
+  EXPECT_NEAR(densityForPixel(0.1, c, sparse), c.min_density, 1e-9);
+  // No data measured (an isolated point): the paper's mapping.
+  EXPECT_EQ(densityForPixel(0.003, c, DataAtClick{}), densityForPixel(0.003, c, std::nullopt));
+}
+
+TEST(Parameters, FollowingTheDataNeverAsksForFewerPointsThanThePapersMapping) {
+  const ParameterConstants c;
+  for (double spacing : {0.0001, 0.0005, 0.001, 0.005, 0.02, 0.046, 0.1, 0.3}) {
+    const DataAtClick data{.spacing_m = spacing, .full_density = 1e13};
+    for (double pixel = 1e-4; pixel < 1.0; pixel *= 1.1) {
+      EXPECT_GE(densityForPixel(pixel, c, data), densityForPixel(pixel, c, std::nullopt) * (1.0 - 1e-12))
+          << "spacing " << spacing << ", pixel " << pixel;
+    }
+  }
+}
+
+TEST(Parameters, AClickThatFollowsTheDataKeepsItsSpacing) {
+  const ViewAtClick view = viewFromDistance({1, 2, 3}, 0.4);  // pixels of 0.43 mm
+  const GrowParameters p = parametersForView(view, {}, DataAtClick{.spacing_m = 0.004, .full_density = 1e9});
+  EXPECT_EQ(p.click_spacing_m, 0.004);
+  EXPECT_EQ(p.density, 1e9);
+  EXPECT_EQ(parametersForView(view).click_spacing_m, 0.0);
+  EXPECT_EQ(parametersForView(view).density, ParameterConstants{}.max_density);
+}
+
 TEST(Parameters, OrthographicPixelsDoNotDependOnDepth) {
   const Eigen::Matrix4d projection = orthographic(5.0, 16.0 / 9.0);
   const double near = parametersForView(lookingDown({0, 0, 0}, 2.0, projection)).pixel_size_m;

@@ -12,6 +12,7 @@
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/view/camera_json.h"
+#include "reco/data_at_click.h"
 #include "reco/region_grower.h"
 #include "ui/cli/arguments.h"
 #include "ui/cli/cloud_input.h"
@@ -80,15 +81,21 @@ Command addGrowCommand(CLI::App& plumb) {
     reco::ParameterConstants constants;
     constants.plane_threshold_m = options->plane_threshold;
     constants.plane_threshold_from_data = tp_option->count() == 0;
-    reco::GrowParameters parameters = reco::parametersForView(view, constants);
-    if (!options->detail.empty()) {
+    const double full_density = std::pow(octree->spacing(octree->header().depth), -3.0);
+    reco::GrowParameters parameters;
+    double measure_ms = 0.0;
+    if (options->detail.empty()) {
+      // The data's spacing at the click, before the grow's clock starts: its time is reported.
+      const auto measuring = std::chrono::steady_clock::now();
+      parameters = reco::parametersForView(view, constants, reco::dataAtClick(cache, seed));
+      measure_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - measuring).count();
+    } else {
       const reco::Detail detail = options->detail == "low"      ? reco::Detail::kLow
                                   : options->detail == "medium" ? reco::Detail::kMedium
                                   : options->detail == "high"   ? reco::Detail::kHigh
                                                                 : reco::Detail::kFull;
-      const double density =
-          reco::densityForDetail(detail, constants, std::pow(octree->spacing(octree->header().depth), -3.0));
-      parameters = reco::parametersForDensity(seed, density, parameters.seed_radius_m, constants);
+      const double density = reco::densityForDetail(detail, constants, full_density);
+      parameters = reco::parametersForDensity(seed, density, reco::parametersForView(view).seed_radius_m, constants);
     }
 
     double first_progress_ms = -1.0;
@@ -108,6 +115,11 @@ Command addGrowCommand(CLI::App& plumb) {
     }
     std::printf("  parameters  r_s %.3f m, d %.0f points/m^3, r %.4f m, %s\n", parameters.seed_radius_m,
                 parameters.density, parameters.search_radius_m, threshold);
+    if (parameters.click_spacing_m > 0.0) {
+      std::printf("  view        pixel %.2f mm at the click, the points %.1f mm apart there (measured in %.1f ms)%s\n",
+                  parameters.pixel_size_m * 1e3, parameters.click_spacing_m * 1e3, measure_ms,
+                  parameters.density >= full_density ? ": every point" : "");
+    }
     std::printf("  grown at    levels %u to %u (%s refinements, %s coarsenings), r %.4f m (data spacing %.4f m)\n",
                 result.coarsest_level, result.finest_level, withThousands(result.refinements).c_str(),
                 withThousands(result.coarsenings).c_str(), result.search_radius_m, result.data_spacing_m);
@@ -128,8 +140,9 @@ Command addGrowCommand(CLI::App& plumb) {
                   corner.segments[2], corner.position.x(), corner.position.y(), corner.position.z());
     }
     std::printf(
-        "  time        first snapshot %.1f ms, %s %.1f ms; %s cell visits, %s point tests (%s skipped), %s bridges\n",
-        first_progress_ms, result.converged ? "converged" : "stopped", result.elapsed_ms,
+        "  time        first snapshot %.1f ms, the seed sphere %.1f ms, %s %.1f ms; %s cell visits, %s point tests "
+        "(%s skipped), %s bridges\n",
+        first_progress_ms, result.seeded_ms, result.converged ? "converged" : "stopped", result.elapsed_ms,
         withThousands(result.cells_visited).c_str(), withThousands(result.points_tested).c_str(),
         withThousands(result.tests_skipped).c_str(), withThousands(result.bridges).c_str());
 

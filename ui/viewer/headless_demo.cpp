@@ -10,6 +10,7 @@
 #include "engine/lod/octree.h"
 #include "engine/render/point_renderer.h"
 #include "engine/view/camera_controls.h"
+#include "reco/data_at_click.h"
 #include "reco/parameters.h"
 #include "reco/region_grower.h"
 #include "ui/viewer/demo_scan.h"
@@ -34,7 +35,8 @@ int runHeadlessDemo(const std::string& png_path, const std::string& gpu_name) {
   camera.viewport_width_px = 1280;
   camera.viewport_height_px = 720;
   const Eigen::Vector3d wall_point(camera.position.x() + 2.4, camera.position.y() - 1.0, camera.position.z() - 0.3);
-  const reco::GrowParameters parameters = reco::parametersForView(*viewAtClick(camera, wall_point));
+  const reco::GrowParameters parameters =
+      reco::parametersForView(*viewAtClick(camera, wall_point), {}, reco::dataAtClick(cache, wall_point));
   const reco::GrowSnapshot result = reco::growRegions(cache, parameters);
   std::printf("  grew %zu segments, %zu edges and %zu corners in %.1f ms at the corridor wall\n",
               result.segments.size(), result.edges.size(), result.corners.size(), result.elapsed_ms);

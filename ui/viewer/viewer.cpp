@@ -18,6 +18,7 @@
 #include "engine/lod/octree.h"
 #include "engine/lod/octree_builder.h"
 #include "engine/view/camera_controls.h"
+#include "reco/data_at_click.h"
 #include "ui/viewer/demo_scan.h"
 #include "ui/viewer/project_bridge.h"
 #include "ui/viewer/snapping.h"
@@ -666,8 +667,10 @@ void Viewer::updateHover() {
 }
 
 // The grow parameters of a click at `picked` in the current view, with the panel's t_p and
-// detail; nothing when the point lies behind the eye.
-std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3d& picked) const {
+// detail, the view's detail following `data` (the cloud at the click); nothing when the point
+// lies behind the eye.
+std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3d& picked,
+                                                            const std::optional<reco::DataAtClick>& data) const {
   const view::Camera& camera = cloud_->navigator->camera();
   // The screen the user sees: the window, not the render's scaled viewport.
   const std::optional<reco::ViewAtClick> view =
@@ -676,7 +679,7 @@ std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3
   reco::ParameterConstants constants;
   constants.plane_threshold_m = grow_panel_.plane_threshold_m;
   constants.plane_threshold_from_data = grow_panel_.threshold_from_data;
-  reco::GrowParameters parameters = reco::parametersForView(*view, constants);
+  reco::GrowParameters parameters = reco::parametersForView(*view, constants, data);
   if (grow_panel_.detail > 0) {
     const lod::Octree& octree = *cloud_->octree;
     const double density = reco::densityForDetail(static_cast<reco::Detail>(grow_panel_.detail - 1), constants,
@@ -687,7 +690,10 @@ std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3
 }
 
 void Viewer::startGrow(const Eigen::Vector3d& picked) {
-  const std::optional<reco::GrowParameters> parameters = clickParameters(picked);
+  // The data's spacing where the user clicked, for the view's detail (a few nodes, most of them
+  // loaded for the picture already).
+  grow_panel_.last_data = reco::dataAtClick(*cloud_->cache, picked);
+  const std::optional<reco::GrowParameters> parameters = clickParameters(picked, grow_panel_.last_data);
   if (!parameters) return;
   // Cancel first: the old grow's live outline goes now, and its late snapshots are dropped.
   scene_.dropLive();

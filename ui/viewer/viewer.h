@@ -65,6 +65,7 @@ struct GrowPanel {
   bool threshold_from_data = true;  // t_p from the noise measured at each click instead
   int detail = 0;                   // 0 from the view, then low, medium, high, full
   std::optional<reco::GrowParameters> last;
+  std::optional<reco::DataAtClick> last_data;  // the cloud at the last click
   std::optional<GrowUpdate> last_update;  // its newest snapshot's statistics
 };
 
@@ -89,7 +90,8 @@ class Viewer {
   void cornerOfSelected();
   void groupSelected();
   void startGrow(const Eigen::Vector3d& picked);
-  std::optional<reco::GrowParameters> clickParameters(const Eigen::Vector3d& picked) const;
+  std::optional<reco::GrowParameters> clickParameters(const Eigen::Vector3d& picked,
+                                                      const std::optional<reco::DataAtClick>& data) const;
   void setTool(Tool tool);
   void updateHover();
   void undo();

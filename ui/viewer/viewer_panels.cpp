@@ -170,11 +170,14 @@ void Viewer::drawGrowPanel() {
   tooltip("The plane threshold: how far a point may lie off its plane. Set it near 3 x the scanner's noise.");
   ImGui::EndDisabled();
   ImGui::Combo("Detail", &grow_panel_.detail, kDetails, IM_ARRAYSIZE(kDetails));
-  tooltip("From the view: nearer views grow finer. The others override the density the view implies.");
-  // Live: what a click at the view's centre would use now (the target's depth); then the
-  // last click's.
+  tooltip(
+      "From the view: nearer views grow finer, down to every point where a pixel is as fine as the points are "
+      "apart. The others override the density the view implies.");
+  // Live: what a click at the view's centre would use now (the target's depth, the data as the
+  // last click measured it); then the last click's.
   if (cloud_) {
-    if (const std::optional<reco::GrowParameters> now = clickParameters(cloud_->navigator->camera().target)) {
+    if (const std::optional<reco::GrowParameters> now =
+            clickParameters(cloud_->navigator->camera().target, grow_panel_.last_data)) {
       ImGui::TextDisabled("at the view's centre now:");
       ImGui::Text("r_s %.3f m   d %.0f pts/m^3   r %.4f m", now->seed_radius_m, now->density, now->search_radius_m);
     }
@@ -184,7 +187,11 @@ void Viewer::drawGrowPanel() {
     ImGui::TextDisabled("the last click:");
     ImGui::Text("r_s %.3f m   d %.0f pts/m^3", p.seed_radius_m, p.density);
     ImGui::Text("r %.4f m", p.search_radius_m);
-    ImGui::Text("pixel %.2f mm at the click", p.pixel_size_m * 1e3);
+    if (p.click_spacing_m > 0.0) {
+      ImGui::Text("pixel %.2f mm at the click, points %.1f mm apart", p.pixel_size_m * 1e3, p.click_spacing_m * 1e3);
+    } else {
+      ImGui::Text("pixel %.2f mm at the click", p.pixel_size_m * 1e3);
+    }
   } else {
     ImGui::TextUnformatted("Click a surface with the Grow tool (G).");
   }
