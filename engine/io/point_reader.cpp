@@ -42,13 +42,14 @@ std::unique_ptr<PointReader> openPointCloud(const std::string& path, const Reade
   }
   if (startsWith(head, "ply\n") || startsWith(head, "ply\r\n")) return openPly(path);
   if (startsWith(head, "LASF")) return openLas(path);
+  if (startsWith(head, "ASTM-E57")) return openE57(path);
   if (startsWith(head, "# .PCD") || startsWith(head, "VERSION") || startsWith(head, "FIELDS") || extension == ".pcd") {
     return openPcd(path);
   }
   for (const char* ascii : {".xyz", ".txt", ".pts", ".csv", ".asc"}) {
     if (extension == ascii) return openAscii(path, options);
   }
-  throw fileError(path, "unknown point-cloud format; Plumb reads PLY, LAS, PCD and ASCII (.xyz .txt .pts .csv .asc)");
+  throw fileError(path, "unknown point-cloud format; Plumb reads PLY, LAS, PCD, E57 and ASCII (.xyz .txt .pts .csv .asc)");
 }
 
 }  // namespace plumb::io

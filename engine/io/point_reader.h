@@ -1,5 +1,5 @@
 #pragma once
-// Streaming point-cloud readers: PLY, LAS, PCD and ASCII (XYZ, TXT, PTS, CSV).
+// Streaming point-cloud readers: PLY, LAS, PCD, E57 and ASCII (XYZ, TXT, PTS, CSV).
 //
 // A reader delivers points in batches of bounded size and never holds the whole file in memory
 // (except PCD binary_compressed, whose single LZF block must be decompressed whole).
@@ -66,7 +66,9 @@ struct CloudInfo {
 // What reading found, growing as batches are read.
 struct ReadCounts {
   std::uint64_t delivered = 0;   // points handed out
-  std::uint64_t non_finite = 0;  // skipped: a NaN or infinite coordinate (organized PCD invalid pixels too)
+  // Skipped: no valid position. A NaN or infinite coordinate (organized PCD's invalid pixels
+  // too), or a point the file marks invalid (E57's invalid states).
+  std::uint64_t non_finite = 0;
 };
 
 class PointReader {
@@ -119,6 +121,7 @@ std::unique_ptr<PointReader> openPly(const std::string& path);
 std::unique_ptr<PointReader> openLas(const std::string& path);
 std::unique_ptr<PointReader> openPcd(const std::string& path);
 std::unique_ptr<PointReader> openAscii(const std::string& path, const ReaderOptions& options);
+std::unique_ptr<PointReader> openE57(const std::string& path);
 
 // 8-bit colour to the 16-bit scale of PointRecord.
 constexpr std::uint16_t widenColour(std::uint8_t value) {

@@ -277,7 +277,7 @@ class Builder {
         [&](const BuildSource& source, const io::PointReader& reader) { collectInputFacts(source, reader); });
     if (count == 0) {
       throw Error("the input holds no points" +
-                  std::string(header_.skipped_non_finite > 0 ? " with finite coordinates" : ""));
+                  std::string(header_.skipped_non_finite > 0 ? " with a valid position" : ""));
     }
     header_.point_count = count;
     header_.input_files = static_cast<std::uint32_t>(options_.sources.size());

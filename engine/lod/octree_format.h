@@ -39,7 +39,7 @@ struct OctreeHeader {
   std::uint32_t attributes = 0;
   std::uint32_t leaf_max_points = 0;
   Box3 bounds{};                         // of the points
-  std::uint64_t skipped_non_finite = 0;  // input points dropped for NaN or infinite coordinates
+  std::uint64_t skipped_non_finite = 0;  // input points without a valid position (io::ReadCounts::non_finite)
   std::uint64_t index_offset = 0;
   std::uint64_t index_bytes = 0;
   std::uint32_t index_crc = 0;

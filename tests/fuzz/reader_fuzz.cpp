@@ -1,5 +1,5 @@
 // libFuzzer target for the point-cloud readers; PLUMB_FUZZ_READER (a compile definition) picks
-// the reader: ply, las, pcd or ascii. Any input must end in points or a plumb::Error, never in
+// the reader: ply, las, pcd, e57 or ascii. Any input must end in points or a plumb::Error, never in
 // a crash, a hang or a sanitizer report. Run by scripts/fuzz.
 
 #include <sys/mman.h>
@@ -33,6 +33,7 @@ std::unique_ptr<plumb::io::PointReader> open(const std::string& path) {
   if (reader == "ply") return plumb::io::openPly(path);
   if (reader == "las") return plumb::io::openLas(path);
   if (reader == "pcd") return plumb::io::openPcd(path);
+  if (reader == "e57") return plumb::io::openE57(path);
   return plumb::io::openAscii(path, {});
 }
 

@@ -27,7 +27,7 @@ struct ImportOptions {
 
 Command addImportCommand(CLI::App& plumb) {
   auto options = std::make_shared<ImportOptions>();
-  CLI::App* sub = plumb.add_subcommand("import", "Build an octree from point files (PLY, LAS, PCD, XYZ/TXT/PTS/CSV)");
+  CLI::App* sub = plumb.add_subcommand("import", "Build an octree from point files (PLY, LAS, PCD, E57, XYZ/TXT/PTS/CSV)");
   sub->footer("Example: plumb import scan1.las scan2.ply -o site.plumb --memory-mb 4096");
   sub->add_option("inputs", options->inputs, "Point files, merged into one cloud")
       ->required()
@@ -58,7 +58,7 @@ Command addImportCommand(CLI::App& plumb) {
     std::printf("imported %s points from %zu file%s into %s\n", withThousands(report.points).c_str(),
                 options->inputs.size(), options->inputs.size() == 1 ? "" : "s", options->output.c_str());
     if (report.skipped_non_finite > 0) {
-      std::printf("  skipped  %s points with NaN or infinite coordinates\n",
+      std::printf("  skipped  %s points without a valid position (NaN or infinite coordinates, or marked invalid)\n",
                   withThousands(report.skipped_non_finite).c_str());
     }
     for (const std::string& field : report.ignored_fields) std::printf("  ignored  %s\n", field.c_str());

@@ -26,7 +26,7 @@ Command addInfoCommand(CLI::App& plumb) {
     std::printf("%s\n", path->c_str());
     std::printf("  points      %s", withThousands(h.point_count).c_str());
     if (h.skipped_non_finite > 0) {
-      std::printf(" (%s input points skipped: NaN or infinite coordinates)",
+      std::printf(" (%s input points skipped: no valid position)",
                   withThousands(h.skipped_non_finite).c_str());
     }
     std::printf("\n  inputs      %u file%s\n", h.input_files, h.input_files == 1 ? "" : "s");

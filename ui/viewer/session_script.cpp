@@ -197,6 +197,13 @@ class StepParser {
       const auto it = std::find_if(kTools.begin(), kTools.end(), [&](const auto& t) { return name == t.first; });
       if (it == kTools.end()) fail("unknown tool '" + name + "' (navigate, grow, measure, polygon, move or extrude)");
       out.tool = it->second;
+    } else if (step_.contains("grow_detail")) {
+      const std::string name = step_.at("grow_detail").is_string() ? step_.at("grow_detail").get<std::string>() : "";
+      static constexpr std::array<const char*, 5> kDetails{"view", "low", "medium", "high", "full"};
+      const auto it = std::find(kDetails.begin(), kDetails.end(), name);
+      if (it == kDetails.end()) fail("unknown grow_detail '" + name + "' (view, low, medium, high or full)");
+      out.kind = ScriptStep::Kind::kGrowDetail;
+      out.count = static_cast<std::uint64_t>(it - kDetails.begin());
     } else if (step_.contains("wait")) {
       const std::string what = step_.at("wait").is_string() ? step_.at("wait").get<std::string>() : "";
       out.timeout_s = number("timeout_s", 60, 0.001, 3600);
@@ -299,6 +306,10 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
         return frame;
       case ScriptStep::Kind::kTool:
         frame.tool = step.tool;
+        done();
+        continue;
+      case ScriptStep::Kind::kGrowDetail:
+        frame.grow_detail = static_cast<int>(step.count);
         done();
         continue;
       case ScriptStep::Kind::kScreenshot:

@@ -17,6 +17,7 @@
 //   {"type": "1.25"}                       text, a key and its character per frame
 //   {"tool": "grow"}                       choose a tool (navigate, grow, measure, polygon, move,
 //                                          extrude)
+//   {"grow_detail": "medium"}              the Grow panel's Detail (view, low, medium, high, full)
 //   {"wait": "frames", "count": N} | {"wait": "ms", "ms": N} | {"wait": "grower_idle"} |
 //   {"wait": "streaming_idle"}             the last two time out after "timeout_s" (default 60)
 //   {"screenshot": "name.png"}             into --screenshot-dir
@@ -44,6 +45,7 @@ struct ScriptStep {
     kMoveWorld,   // `world`
     kLook,        // `world` (the eye), `target`
     kTool,        // `tool`
+    kGrowDetail,  // `count`: the Grow panel's Detail entry (0 from the view, then low to full)
     kWaitFrames,  // `count`
     kWaitMs,      // `ms`
     kWaitGrowerIdle,
@@ -71,6 +73,7 @@ std::vector<ScriptStep> readSessionScript(const std::string& path);
 struct ScriptFrame {
   std::vector<InputEvent> events;
   std::optional<Tool> tool;
+  std::optional<int> grow_detail;  // the Grow panel's Detail entry
   std::optional<std::string> screenshot;  // file name
   std::optional<std::pair<int, int>> resize;
   std::optional<Eigen::Vector3d> click_world;                       // the viewer turns it into a click at its pixel

@@ -347,6 +347,7 @@ int Viewer::run() {
       if (frame.finished) break;
       events.insert(events.end(), frame.events.begin(), frame.events.end());
       if (frame.tool) setTool(*frame.tool);
+      if (frame.grow_detail) grow_panel_.detail = *frame.grow_detail;
       if (frame.resize) window_.resize(frame.resize->first, frame.resize->second);
       if (frame.look && cloud_) {
         view::Camera camera = cloud_->navigator->camera();
