@@ -42,10 +42,10 @@ json frames(int count) {
   return {{"wait", "frames"}, {"count", count}};
 }
 const json kGrowerIdle = {{"wait", "grower_idle"}, {"timeout_s", 300}};
-// The tasks are about the drawing tools on the grown planes, not the detail: the paper's medium
-// density keeps every grow under a second in Release (from the view, at these distances the
-// detail follows the data to every point: seconds per grow, minutes under the sanitizers).
-const json kMediumDetail = {{"grow_detail", "medium"}};
+// The tasks are about the drawing tools on the grown planes, not the detail: from the view with
+// the paper's densities, every grow takes under a second in Release (following the data it
+// would take every point of these 1 and 2 M-point scans: seconds per grow, minutes under ASan).
+const json kPaperDetail = {{"grow_detail", "view-paper"}};
 const json kStreamingIdle = {{"wait", "streaming_idle"}, {"timeout_s", 300}};
 
 // A grow seeded at `seed`, seen from `eye` (near: the detail of a zoomed-in view).
@@ -78,7 +78,7 @@ double distance(const json& world, const Eigen::Vector3d& local) {
 TEST(ExpertTasks, AWallRectangleClosedThroughACornerInAScanShadow) {
   const plumb::test::TempDirectory dir;
   const std::string cloud = simulated(dir, "room", "--stations 1 --points 1000000");
-  json steps = json::array({kStreamingIdle, {{"tool", "grow"}}, kMediumDetail});
+  json steps = json::array({kStreamingIdle, {{"tool", "grow"}}, kPaperDetail});
   growAt(steps, {1.6, 1.6, 1.2}, {0.2, 0.2, 0.0});  // the corner (0, 0, 0): floor, x- and y- walls
   growAt(steps, {1.6, 1.6, 1.3}, {0.2, 0.2, 2.5});  // the corner (0, 0, 2.5): the ceiling
   growAt(steps, {2.0, 2.5, 1.5}, {2.0, 5.0, 1.5});  // the y+ wall, beside the cabinet
@@ -138,7 +138,7 @@ TEST(ExpertTasks, AWindowRevealExtrudedFromItsHeadToItsSill) {
   const plumb::test::TempDirectory dir;
   const std::string cloud = simulated(dir, "room", "--points 2000000");
   const std::string project = dir.file("window.plumbproj");
-  json steps = json::array({kStreamingIdle, {{"tool", "grow"}}, kMediumDetail});
+  json steps = json::array({kStreamingIdle, {{"tool", "grow"}}, kPaperDetail});
   growAt(steps, {2.9, 4.3, 1.7}, {2.58, 5.06, 2.1});  // on the head: head, x- reveal, wall
   growAt(steps, {3.9, 4.3, 1.7}, {4.22, 5.06, 2.1});  // head, x+ reveal, wall
   growAt(steps, {3.9, 4.3, 1.7}, {4.22, 5.19, 2.1});  // head, x+ reveal, glass
@@ -221,7 +221,7 @@ TEST(ExpertTasks, AStairTreadCopiedUpTheStaircaseAlongALockedDirection) {
   const plumb::test::TempDirectory dir;
   const std::string cloud = simulated(dir, "stairs", "--points 2000000");
   const auto nosing = [](int step) { return Eigen::Vector3d(2.0 + (step - 1) * 0.28, 1.2, step * 0.1875); };
-  json steps = json::array({kStreamingIdle, {{"tool", "grow"}}, kMediumDetail});
+  json steps = json::array({kStreamingIdle, {{"tool", "grow"}}, kPaperDetail});
   growAt(steps, {2.9, 1.7, 0.9}, {2.6, 1.15, 0.56});   // step 3's nosing at the stair's side
   growAt(steps, {5.4, 1.7, 2.6}, {5.12, 1.15, 2.24});  // step 12's
   steps.push_back(look({1.6, 2.8, 2.6}, {3.9, 0.6, 1.3}));

@@ -7,6 +7,7 @@
 #include <array>
 #include <fstream>
 #include <map>
+#include <string_view>
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
@@ -199,9 +200,10 @@ class StepParser {
       out.tool = it->second;
     } else if (step_.contains("grow_detail")) {
       const std::string name = step_.at("grow_detail").is_string() ? step_.at("grow_detail").get<std::string>() : "";
-      static constexpr std::array<const char*, 5> kDetails{"view", "low", "medium", "high", "full"};
+      // In the Grow panel's order (GrowPanel::detail).
+      static constexpr std::array<std::string_view, 6> kDetails{"view", "view-paper", "low", "medium", "high", "full"};
       const auto it = std::find(kDetails.begin(), kDetails.end(), name);
-      if (it == kDetails.end()) fail("unknown grow_detail '" + name + "' (view, low, medium, high or full)");
+      if (it == kDetails.end()) fail("unknown grow_detail '" + name + "' (view, view-paper, low, medium, high or full)");
       out.kind = ScriptStep::Kind::kGrowDetail;
       out.count = static_cast<std::uint64_t>(it - kDetails.begin());
     } else if (step_.contains("wait")) {

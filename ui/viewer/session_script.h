@@ -17,7 +17,8 @@
 //   {"type": "1.25"}                       text, a key and its character per frame
 //   {"tool": "grow"}                       choose a tool (navigate, grow, measure, polygon, move,
 //                                          extrude)
-//   {"grow_detail": "medium"}              the Grow panel's Detail (view, low, medium, high, full)
+//   {"grow_detail": "medium"}              the Grow panel's Detail (view, view-paper, low, medium,
+//                                          high, full)
 //   {"wait": "frames", "count": N} | {"wait": "ms", "ms": N} | {"wait": "grower_idle"} |
 //   {"wait": "streaming_idle"}             the last two time out after "timeout_s" (default 60)
 //   {"screenshot": "name.png"}             into --screenshot-dir
@@ -45,7 +46,7 @@ struct ScriptStep {
     kMoveWorld,   // `world`
     kLook,        // `world` (the eye), `target`
     kTool,        // `tool`
-    kGrowDetail,  // `count`: the Grow panel's Detail entry (0 from the view, then low to full)
+    kGrowDetail,  // `count`: the Grow panel's Detail entry (GrowPanel::detail)
     kWaitFrames,  // `count`
     kWaitMs,      // `ms`
     kWaitGrowerIdle,

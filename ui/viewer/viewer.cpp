@@ -680,10 +680,11 @@ std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3
   reco::ParameterConstants constants;
   constants.plane_threshold_m = grow_panel_.plane_threshold_m;
   constants.plane_threshold_from_data = grow_panel_.threshold_from_data;
-  reco::GrowParameters parameters = reco::parametersForView(*view, constants, data);
-  if (grow_panel_.detail > 0) {
+  reco::GrowParameters parameters =
+      reco::parametersForView(*view, constants, grow_panel_.detail == 0 ? data : std::nullopt);
+  if (grow_panel_.detail >= 2) {
     const lod::Octree& octree = *cloud_->octree;
-    const double density = reco::densityForDetail(static_cast<reco::Detail>(grow_panel_.detail - 1), constants,
+    const double density = reco::densityForDetail(static_cast<reco::Detail>(grow_panel_.detail - 2), constants,
                                                   std::pow(octree.spacing(octree.header().depth), -3.0));
     parameters = reco::parametersForDensity(picked, density, parameters.seed_radius_m, constants);
   }
@@ -693,7 +694,7 @@ std::optional<reco::GrowParameters> Viewer::clickParameters(const Eigen::Vector3
 void Viewer::startGrow(const Eigen::Vector3d& picked) {
   // The data's spacing where the user clicked, for the view's detail (a few nodes, most of them
   // loaded for the picture already).
-  grow_panel_.last_data = reco::dataAtClick(*cloud_->cache, picked);
+  if (grow_panel_.detail == 0) grow_panel_.last_data = reco::dataAtClick(*cloud_->cache, picked);
   const std::optional<reco::GrowParameters> parameters = clickParameters(picked, grow_panel_.last_data);
   if (!parameters) return;
   // Cancel first: the old grow's live outline goes now, and its late snapshots are dropped.

@@ -63,7 +63,9 @@ struct LoadProgress {
 struct GrowPanel {
   float plane_threshold_m = 0.02f;  // t_p where the user sets it
   bool threshold_from_data = true;  // t_p from the noise measured at each click instead
-  int detail = 0;                   // 0 from the view, then low, medium, high, full
+  // The Detail combo's entry: 0 from the view (following the data), 1 from the view with the
+  // paper's densities alone (milliseconds, coarser on dense scans), then low, medium, high and full.
+  int detail = 0;
   std::optional<reco::GrowParameters> last;
   std::optional<reco::DataAtClick> last_data;  // the cloud at the last click
   std::optional<GrowUpdate> last_update;  // its newest snapshot's statistics

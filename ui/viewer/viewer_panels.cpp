@@ -22,7 +22,8 @@ void tooltip(const char* text) {
 }
 
 const char* kColourModes[] = {"Auto", "RGB", "Intensity", "Elevation"};
-const char* kDetails[] = {"From the view", "Low", "Medium", "High", "Full (every point)"};
+const char* kDetails[] = {"From the view",       "From the view, paper's densities", "Low", "Medium", "High",
+                          "Full (every point)"};
 
 }  // namespace
 
@@ -172,7 +173,8 @@ void Viewer::drawGrowPanel() {
   ImGui::Combo("Detail", &grow_panel_.detail, kDetails, IM_ARRAYSIZE(kDetails));
   tooltip(
       "From the view: nearer views grow finer, down to every point where a pixel is as fine as the points are "
-      "apart. The others override the density the view implies.");
+      "apart. With the paper's densities: never finer than 4.6 cm, fast on dense scans. The others override the "
+      "density the view implies.");
   // Live: what a click at the view's centre would use now (the target's depth, the data as the
   // last click measured it); then the last click's.
   if (cloud_) {
