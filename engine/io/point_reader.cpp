@@ -24,11 +24,6 @@ bool startsWith(const std::string& text, std::string_view prefix) {
 
 std::unique_ptr<PointReader> openPointCloud(const std::string& path, const ReaderOptions& options) {
   const std::string extension = lowerExtension(path);
-  if (extension == ".laz") {
-    throw fileError(path,
-                    "LAZ (compressed LAS) is not supported yet; decompress it to .las first "
-                    "(laszip -i in.laz -o out.las, or pdal translate in.laz out.las)");
-  }
   std::error_code error;
   if (!std::filesystem::exists(path, error)) throw fileError(path, "no such file");
 
@@ -41,7 +36,7 @@ std::unique_ptr<PointReader> openPointCloud(const std::string& path, const Reade
     head.resize(static_cast<std::size_t>(in.gcount()));
   }
   if (startsWith(head, "ply\n") || startsWith(head, "ply\r\n")) return openPly(path);
-  if (startsWith(head, "LASF")) return openLas(path);
+  if (startsWith(head, "LASF")) return openLas(path);  // LAS and LAZ
   if (startsWith(head, "ASTM-E57")) return openE57(path);
   if (startsWith(head, "# .PCD") || startsWith(head, "VERSION") || startsWith(head, "FIELDS") || extension == ".pcd") {
     return openPcd(path);
@@ -49,7 +44,12 @@ std::unique_ptr<PointReader> openPointCloud(const std::string& path, const Reade
   for (const char* ascii : {".xyz", ".txt", ".pts", ".csv", ".asc"}) {
     if (extension == ascii) return openAscii(path, options);
   }
-  throw fileError(path, "unknown point-cloud format; Plumb reads PLY, LAS, PCD, E57 and ASCII (.xyz .txt .pts .csv .asc)");
+  if (extension == ".las" || extension == ".laz") {
+    throw fileError(path, "not a LAS or LAZ file: it does not start with \"LASF\" (a damaged file, or another "
+                          "format under this extension)");
+  }
+  throw fileError(path,
+                  "unknown point-cloud format; Plumb reads PLY, LAS, LAZ, PCD, E57 and ASCII (.xyz .txt .pts .csv .asc)");
 }
 
 }  // namespace plumb::io

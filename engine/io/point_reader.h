@@ -1,5 +1,5 @@
 #pragma once
-// Streaming point-cloud readers: PLY, LAS, PCD, E57 and ASCII (XYZ, TXT, PTS, CSV).
+// Streaming point-cloud readers: PLY, LAS and LAZ, PCD, E57 and ASCII (XYZ, TXT, PTS, CSV).
 //
 // A reader delivers points in batches of bounded size and never holds the whole file in memory
 // (except PCD binary_compressed, whose single LZF block must be decompressed whole).
@@ -113,12 +113,13 @@ struct ReaderOptions {
 };
 
 // Opens `path` with the reader its content (and, for ASCII, its extension) calls for.
-// Throws plumb::Error for an unknown or unsupported format (LAZ is recognised and refused).
+// Throws plumb::Error for an unknown or unsupported format (LAZ of the layered coder, LAS 1.4
+// point formats 6 to 10, is recognised and refused).
 std::unique_ptr<PointReader> openPointCloud(const std::string& path, const ReaderOptions& options = {});
 
 // The readers, for callers that know the format.
 std::unique_ptr<PointReader> openPly(const std::string& path);
-std::unique_ptr<PointReader> openLas(const std::string& path);
+std::unique_ptr<PointReader> openLas(const std::string& path);  // LAS and LAZ
 std::unique_ptr<PointReader> openPcd(const std::string& path);
 std::unique_ptr<PointReader> openAscii(const std::string& path, const ReaderOptions& options);
 std::unique_ptr<PointReader> openE57(const std::string& path);

@@ -35,6 +35,7 @@ struct LasPoint {
 struct Vlr {
   std::string user_id;
   std::size_t payload_bytes;
+  std::uint16_t record_id = 0;
 };
 
 // Everything buildLas writes; the defaults make a valid LAS 1.2 format 0 file.
@@ -90,6 +91,7 @@ std::string buildLas(const LasSpec& spec) {
     std::string record(54 + vlr.payload_bytes, 'v');
     std::memset(record.data(), 0, 54);
     std::memcpy(record.data() + 2, vlr.user_id.data(), std::min<std::size_t>(vlr.user_id.size(), 16));
+    put<std::uint16_t>(record, 18, vlr.record_id);
     put<std::uint16_t>(record, 20, static_cast<std::uint16_t>(vlr.payload_bytes));
     bytes += record;
   }
@@ -400,7 +402,8 @@ TEST_F(LasReader, SkipsAndCountsNonFiniteCoordinates) {
   EXPECT_EQ(reader->counts().delivered, 2u);
 }
 
-TEST_F(LasReader, RefusesLazByThePointFormatBits) {
+TEST_F(LasReader, RefusesLazFormatBitsWithoutALaszipVlr) {
+  // The compression bits say LAZ, but nothing says how the points are compressed.
   for (const int format : {0x83, 0x43}) {
     SCOPED_TRACE(format);
     LasSpec spec;
@@ -408,20 +411,28 @@ TEST_F(LasReader, RefusesLazByThePointFormatBits) {
     spec.points = samplePoints(2);
     const std::string message = openError(buildLas(spec));
     EXPECT_NE(message.find("cloud.las"), std::string::npos) << message;
-    EXPECT_NE(message.find("LAZ"), std::string::npos) << message;
-    EXPECT_NE(message.find("laszip"), std::string::npos) << message;
+    EXPECT_NE(message.find("at byte 104"), std::string::npos) << message;
+    EXPECT_NE(message.find("marks a LAZ file"), std::string::npos) << message;
+    EXPECT_NE(message.find("no laszip VLR"), std::string::npos) << message;
   }
 }
 
-TEST_F(LasReader, RefusesLazByTheLaszipVlr) {
+TEST_F(LasReader, ALaszipVlrMakesTheFileLazAndIsChecked) {
+  // As in LASzip, the VLR (user id "laszip encoded", record id 22204) decides, whatever the
+  // format byte's bits: a malformed one (34 bytes, no item) is refused at its payload.
   LasSpec spec;
   spec.format = 3;
-  spec.vlrs = {{"LASF_Projection", 11}, {"laszip encoded", 34}};
+  spec.vlrs = {{"LASF_Projection", 11}, {"laszip encoded", 34, 22204}};
   spec.points = samplePoints(2);
   const std::string message = openError(buildLas(spec));
-  EXPECT_NE(message.find("LAZ"), std::string::npos) << message;
-  EXPECT_NE(message.find("pdal translate"), std::string::npos) << message;
-  EXPECT_NE(message.find("at byte 292"), std::string::npos) << message;  // 227 + 54 + 11
+  EXPECT_NE(message.find("the laszip VLR has 34 bytes"), std::string::npos) << message;
+  EXPECT_NE(message.find("at byte 346"), std::string::npos) << message;  // 227 + 54 + 11 + 54
+
+  // With another record id it is not the laszip VLR: a plain LAS file.
+  spec.vlrs = {{"LASF_Projection", 11}, {"laszip encoded", 34, 1}};
+  const auto reader = openLas(write(buildLas(spec)));
+  EXPECT_EQ(reader->info().format, "LAS 1.2 point format 3");
+  EXPECT_EQ(readAll(*reader).size(), 2u);
 }
 
 TEST_F(LasReader, RejectsAnEmptyFile) {

@@ -29,12 +29,17 @@ TEST(OpenPointCloud, ChoosesTheReaderByContentThenExtension) {
   EXPECT_EQ(xyz->info().format, "ASCII txt");
 }
 
-TEST(OpenPointCloud, RefusesLazAndUnknownFormatsClearly) {
+TEST(OpenPointCloud, RefusesTruncatedLazAndUnknownFormatsClearly) {
   test::TempDirectory dir;
+  // LAZ goes to the LAS reader (content "LASF"), which names both in its header errors.
   const std::string laz = errorOf(dir.write("scan.laz", "LASF"));
   EXPECT_NE(laz.find("LAZ"), std::string::npos) << laz;
   EXPECT_NE(laz.find("scan.laz"), std::string::npos) << laz;
-  const std::string unknown = errorOf(dir.write("model.e57", "ASTM-E57"));
+  EXPECT_NE(laz.find("truncated header"), std::string::npos) << laz;
+  const std::string not_laz = errorOf(dir.write("other.laz", "ABCDEFGH"));
+  EXPECT_NE(not_laz.find("not a LAS or LAZ file"), std::string::npos) << not_laz;
+  // (An "ASTM-E57" file goes to the E57 reader now: an unknown format needs unknown content.)
+  const std::string unknown = errorOf(dir.write("model.abc", "ABCDEFGH"));
   EXPECT_NE(unknown.find("unknown point-cloud format"), std::string::npos) << unknown;
   EXPECT_NE(errorOf(dir.file("absent.ply")).find("no such file"), std::string::npos);
 }

@@ -1,0 +1,259 @@
+#include "engine/io/laz_arithmetic_decoder.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+
+namespace plumb::io {
+namespace {
+
+// The interval is renormalised when its length drops below 2^24 (one byte of precision left).
+constexpr std::uint32_t kMinLength = 0x01000000u;
+constexpr std::uint32_t kMaxLength = 0xFFFFFFFFu;
+
+// Bit models: the probability of 0 in 13 bits; counts are halved beyond 2^13.
+constexpr unsigned kBitLengthShift = 13;
+constexpr std::uint32_t kBitMaxCount = 1u << kBitLengthShift;
+constexpr std::uint32_t kBitMaxUpdateCycle = 64;
+
+// Symbol models: the distribution in 15 bits; counts are halved beyond 2^15.
+constexpr unsigned kSymbolLengthShift = 15;
+constexpr std::uint32_t kSymbolMaxCount = 1u << kSymbolLengthShift;
+constexpr std::uint32_t kMaxSymbols = 1u << 11;
+constexpr std::uint32_t kSymbolsWithoutTable = 16;
+
+// Bytes read from the file at a time.
+constexpr std::size_t kInputBlockBytes = std::size_t{64} << 10;
+
+}  // namespace
+
+// ---- LazByteInput ----------------------------------------------------------------------------
+
+void LazByteInput::reset(std::uint64_t begin, std::uint64_t end, std::string what) {
+  assert(begin <= end && end <= source_.size() && "a LAZ stretch must lie inside the file");
+  buffer_start_ = begin;
+  at_ = filled_ = 0;
+  end_ = end;
+  what_ = std::move(what);
+}
+
+void LazByteInput::refill() {
+  const std::uint64_t at = offset();
+  if (at >= end_) {
+    throw source_.errorAt(end_, "truncated or corrupt LAZ data: " + what_ +
+                                    " needs more bytes than it has (its compressed data ends here "
+                                    "before its points are decoded)");
+  }
+  const std::size_t bytes = static_cast<std::size_t>(std::min<std::uint64_t>(kInputBlockBytes, end_ - at));
+  if (buffer_.size() < bytes) buffer_.resize(kInputBlockBytes);
+  source_.seek(at);
+  source_.readExactly(std::as_writable_bytes(std::span(buffer_.data(), bytes)), what_);
+  buffer_start_ = at;
+  at_ = 0;
+  filled_ = bytes;
+}
+
+void LazByteInput::read(std::span<std::byte> out) {
+  std::size_t done = 0;
+  while (done < out.size()) {
+    if (at_ == filled_) refill();
+    const std::size_t take = std::min(out.size() - done, filled_ - at_);
+    std::memcpy(out.data() + done, buffer_.data() + at_, take);
+    at_ += take;
+    done += take;
+  }
+}
+
+// ---- The models ------------------------------------------------------------------------------
+
+void LazBitModel::reset() {
+  bit_0_count_ = 1;
+  bit_count_ = 2;
+  bit_0_probability_ = 1u << (kBitLengthShift - 1);
+  update_cycle_ = until_update_ = 4;  // adapt quickly at first
+}
+
+void LazBitModel::update() {
+  bit_count_ += update_cycle_;
+  if (bit_count_ > kBitMaxCount) {
+    bit_count_ = (bit_count_ + 1) >> 1;
+    bit_0_count_ = (bit_0_count_ + 1) >> 1;
+    // Keep some probability for 1: a model sure of 0 could not code a 1 at all.
+    if (bit_0_count_ == bit_count_) ++bit_count_;
+  }
+  const std::uint32_t scale = 0x80000000u / bit_count_;
+  bit_0_probability_ = (bit_0_count_ * scale) >> (31 - kBitLengthShift);
+  update_cycle_ = std::min((5 * update_cycle_) >> 2, kBitMaxUpdateCycle);
+  until_update_ = update_cycle_;
+}
+
+LazSymbolModel::LazSymbolModel(std::uint32_t symbols) : symbols_(symbols), last_symbol_(symbols - 1) {
+  assert(symbols >= 2 && symbols <= kMaxSymbols && "a LAZ symbol model has 2 to 2048 symbols");
+  if (symbols_ > kSymbolsWithoutTable) {
+    // One table entry per 2^table_shift_ of the 2^15 range, about a quarter as many as symbols.
+    std::uint32_t table_bits = 3;
+    while (symbols_ > (1u << (table_bits + 2))) ++table_bits;
+    table_size_ = 1u << table_bits;
+    table_shift_ = kSymbolLengthShift - table_bits;
+    table_.resize(table_size_ + 2);
+  }
+  distribution_.resize(symbols_);
+  counts_.resize(symbols_);
+  reset();
+}
+
+void LazSymbolModel::reset() {
+  total_count_ = 0;
+  update_cycle_ = symbols_;
+  std::fill(counts_.begin(), counts_.end(), 1u);
+  update();
+  update_cycle_ = until_update_ = (symbols_ + 6) >> 1;
+}
+
+void LazSymbolModel::update() {
+  total_count_ += update_cycle_;
+  if (total_count_ > kSymbolMaxCount) {
+    total_count_ = 0;
+    for (std::uint32_t& count : counts_) {
+      count = (count + 1) >> 1;
+      total_count_ += count;
+    }
+  }
+  // total_count_ is the sum of the counts (each decoded symbol added one, update_cycle_ of them
+  // since the last update), at most 2^15: scale * sum stays below 2^31.
+  const std::uint32_t scale = 0x80000000u / total_count_;
+  std::uint32_t sum = 0;
+  if (table_size_ == 0) {
+    for (std::uint32_t k = 0; k < symbols_; ++k) {
+      distribution_[k] = (scale * sum) >> (31 - kSymbolLengthShift);
+      sum += counts_[k];
+    }
+  } else {
+    // table_[t]: the largest symbol whose cumulative value lies below slice t of the range.
+    std::uint32_t slice = 0;
+    for (std::uint32_t k = 0; k < symbols_; ++k) {
+      distribution_[k] = (scale * sum) >> (31 - kSymbolLengthShift);
+      sum += counts_[k];
+      const std::uint32_t reached = distribution_[k] >> table_shift_;
+      while (slice < reached) table_[++slice] = k - 1;
+    }
+    table_[0] = 0;
+    while (slice <= table_size_) table_[++slice] = symbols_ - 1;
+  }
+  update_cycle_ = std::min((5 * update_cycle_) >> 2, (symbols_ + 6) << 3);
+  until_update_ = update_cycle_;
+}
+
+// ---- The decoder -----------------------------------------------------------------------------
+
+void LazArithmeticDecoder::start() {
+  length_ = kMaxLength;
+  value_ = 0;
+  for (int i = 0; i < 4; ++i) value_ = (value_ << 8) | input_.next();
+}
+
+void LazArithmeticDecoder::renormalise() {
+  do {
+    value_ = (value_ << 8) | input_.next();
+    length_ <<= 8;
+  } while (length_ < kMinLength);
+}
+
+std::uint32_t LazArithmeticDecoder::decodeBit(LazBitModel& model) {
+  const std::uint32_t bound = model.bit_0_probability_ * (length_ >> kBitLengthShift);
+  std::uint32_t bit = 0;
+  if (value_ < bound) {
+    length_ = bound;
+    ++model.bit_0_count_;
+  } else {
+    bit = 1;
+    value_ -= bound;
+    length_ -= bound;
+  }
+  if (length_ < kMinLength) renormalise();
+  if (--model.until_update_ == 0) model.update();
+  return bit;
+}
+
+std::uint32_t LazArithmeticDecoder::decodeSymbol(LazSymbolModel& model) {
+  std::uint32_t symbol = 0;
+  std::uint32_t low = 0;         // the symbol's interval start, scaled
+  std::uint32_t high = length_;  // its end (the whole length for the last symbol)
+  length_ >>= kSymbolLengthShift;
+  if (model.table_size_ != 0) {
+    const std::uint32_t target = value_ / length_;
+    // Within the table for any valid stream (value_ < the old length); the clamp only keeps a
+    // corrupt stream inside the array.
+    const std::uint32_t slice = std::min(target >> model.table_shift_, model.table_size_);
+    symbol = model.table_[slice];
+    std::uint32_t above = model.table_[slice + 1] + 1;
+    while (above > symbol + 1) {
+      const std::uint32_t middle = (symbol + above) >> 1;
+      if (model.distribution_[middle] > target) {
+        above = middle;
+      } else {
+        symbol = middle;
+      }
+    }
+    low = model.distribution_[symbol] * length_;
+    if (symbol != model.last_symbol_) high = model.distribution_[symbol + 1] * length_;
+  } else {
+    // Few symbols: bisect on the products directly.
+    std::uint32_t above = model.symbols_;
+    std::uint32_t middle = above >> 1;
+    do {
+      const std::uint32_t product = length_ * model.distribution_[middle];
+      if (product > value_) {
+        above = middle;
+        high = product;
+      } else {
+        symbol = middle;
+        low = product;
+      }
+      middle = (symbol + above) >> 1;
+    } while (middle != symbol);
+  }
+  value_ -= low;
+  length_ = high - low;
+  if (length_ < kMinLength) renormalise();
+  ++model.counts_[symbol];
+  if (--model.until_update_ == 0) model.update();
+  return symbol;
+}
+
+std::uint32_t LazArithmeticDecoder::readUpTo19Bits(unsigned bits) {
+  length_ >>= bits;
+  const std::uint32_t symbol = value_ / length_;
+  value_ -= length_ * symbol;
+  if (length_ < kMinLength) renormalise();
+  return symbol;
+}
+
+std::uint32_t LazArithmeticDecoder::readBits(unsigned bits) {
+  assert(bits >= 1 && bits <= 32 && "readBits takes 1 to 32 bits");
+  if (bits > 19) {
+    // Beyond 19 bits the shifted length would leave too little precision: 16 bits first.
+    const std::uint32_t low = readShort();
+    const std::uint32_t high = readBits(bits - 16);
+    return (high << 16) | low;
+  }
+  return readUpTo19Bits(bits);
+}
+
+std::uint16_t LazArithmeticDecoder::readShort() {
+  return static_cast<std::uint16_t>(readUpTo19Bits(16));
+}
+
+std::uint32_t LazArithmeticDecoder::readInt() {
+  const std::uint32_t low = readShort();
+  const std::uint32_t high = readShort();
+  return (high << 16) | low;
+}
+
+std::uint64_t LazArithmeticDecoder::readInt64() {
+  const std::uint64_t low = readInt();
+  const std::uint64_t high = readInt();
+  return (high << 32) | low;
+}
+
+}  // namespace plumb::io

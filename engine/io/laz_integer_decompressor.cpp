@@ -1,0 +1,73 @@
+#include "engine/io/laz_integer_decompressor.h"
+
+#include <algorithm>
+#include <cassert>
+#include <limits>
+
+namespace plumb::io {
+
+LazIntegerDecompressor::LazIntegerDecompressor(unsigned bits, unsigned contexts, unsigned bits_high)
+    : bits_high_(bits_high) {
+  assert(bits >= 1 && bits <= 32 && "a LAZ integer field has 1 to 32 bits");
+  assert(contexts >= 1 && bits_high >= 1 && bits_high <= 11 && "LASzip uses 8 high bits and at least one context");
+  if (bits < 32) {
+    corrector_bits_ = bits;
+    corrector_range_ = 1u << bits;
+    corrector_min_ = -static_cast<std::int32_t>(corrector_range_ / 2);
+  } else {
+    corrector_bits_ = 32;
+    corrector_range_ = 0;
+    corrector_min_ = std::numeric_limits<std::int32_t>::min();
+  }
+  k_models_.reserve(contexts);
+  for (unsigned i = 0; i < contexts; ++i) k_models_.emplace_back(corrector_bits_ + 1);
+  corrector_models_.reserve(corrector_bits_);
+  for (unsigned k = 1; k <= corrector_bits_; ++k) corrector_models_.emplace_back(1u << std::min(k, bits_high_));
+}
+
+void LazIntegerDecompressor::reset() {
+  for (LazSymbolModel& model : k_models_) model.reset();
+  k0_model_.reset();
+  for (LazSymbolModel& model : corrector_models_) model.reset();
+  k_ = 0;
+}
+
+std::uint32_t LazIntegerDecompressor::readCorrector(LazArithmeticDecoder& decoder, unsigned context) {
+  assert(context < k_models_.size() && "context beyond the decompressor's contexts");
+  k_ = decoder.decodeSymbol(k_models_[context]);
+  if (k_ == 0) return decoder.decodeBit(k0_model_);  // c is 0 or 1
+  if (k_ >= 32) return static_cast<std::uint32_t>(corrector_min_);
+
+  std::uint32_t c = 0;
+  if (k_ <= bits_high_) {
+    c = decoder.decodeSymbol(corrector_models_[k_ - 1]);
+  } else {
+    const unsigned low_bits = k_ - bits_high_;
+    const std::uint32_t high = decoder.decodeSymbol(corrector_models_[k_ - 1]);
+    c = (high << low_bits) | decoder.readBits(low_bits);
+  }
+  // c is the offset in the 2^k values of the corrector's two intervals: the upper half stands
+  // for [2^(k-1) + 1, 2^k], the lower half for [-(2^k - 1), -2^(k-1)]. The comparison is signed,
+  // as the reference's, so that corrupt raw bits fold the same way (32-bit wrap-around).
+  if (static_cast<std::int32_t>(c) >= static_cast<std::int32_t>(1u << (k_ - 1))) {
+    c += 1;
+  } else {
+    c -= (1u << k_) - 1u;
+  }
+  return c;
+}
+
+std::int32_t LazIntegerDecompressor::decompress(LazArithmeticDecoder& decoder, std::int32_t prediction,
+                                                unsigned context) {
+  // 32-bit wrap-around throughout: a 32-bit field's difference may wrap, and corrupt input must
+  // not overflow a signed integer.
+  std::uint32_t real = static_cast<std::uint32_t>(prediction) + readCorrector(decoder, context);
+  if (static_cast<std::int32_t>(real) < 0) {
+    real += corrector_range_;
+  } else if (real >= corrector_range_) {
+    real -= corrector_range_;
+  }
+  return static_cast<std::int32_t>(real);
+}
+
+}  // namespace plumb::io

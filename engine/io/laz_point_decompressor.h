@@ -1,0 +1,64 @@
+#pragma once
+// The point data of a LAZ file written with the point-wise LASzip coder (compressor 1, one
+// stream; compressor 2, chunks), decoded into the exact bytes of the uncompressed LAS point
+// records, after the LASzip reference implementation, src/lasreadpoint.cpp (read, not copied);
+// Isenburg 2013, "LASzip: lossless compression of LiDAR data", PE&RS 79(2).
+//
+//   1. Compressor 2: read the chunk table (laz_chunk_table.h). Compressor 1: the points form one
+//      chunk that starts at the point data.
+//   2. Each chunk: its first point stored raw (every item's bytes, the record as it is), which
+//      starts every item decoder (laz_items.h); then the arithmetic-coded stream of the others,
+//      each item decoding its bytes of the record in turn.
+//   3. A chunk's compressed bytes end where the table says (or at the end of the point data):
+//      a decoder that needs more stops with plumb::Error naming the chunk and the offset.
+//
+// Streaming: one chunk's models and a 64 KiB read buffer, never the whole file. Not thread-safe.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/io/file_source.h"
+#include "engine/io/laszip_vlr.h"
+#include "engine/io/laz_arithmetic_decoder.h"
+#include "engine/io/laz_chunk_table.h"
+#include "engine/io/laz_items.h"
+
+namespace plumb::io {
+
+class LazPointDecompressor {
+ public:
+  // `vlr`: checked by readLaszipVlr, compressor 1 or 2. The point data starts at `point_offset`
+  // and ends by `data_end` (the EVLRs or the end of the file); `point_count` records of
+  // `record_length` bytes. Reads the chunk table; throws plumb::Error when it is malformed.
+  LazPointDecompressor(FileSource& source, const LaszipVlr& vlr, std::uint64_t point_offset, std::uint64_t data_end,
+                       std::size_t record_length, std::uint64_t point_count);
+
+  // Decodes the next records.size() / record_length records (no more than remain) into
+  // `records`. Throws plumb::Error on truncated or corrupt compressed data.
+  void decode(std::span<std::byte> records);
+
+  std::uint64_t decoded() const { return decoded_; }
+
+ private:
+  void startChunk(std::byte* record);
+
+  FileSource& source_;
+  LazByteInput input_;
+  LazArithmeticDecoder decoder_;
+  std::vector<std::unique_ptr<LazItemDecoder>> items_;
+  std::vector<std::size_t> item_offsets_;  // in the record
+  bool chunked_;
+  std::uint32_t chunk_size_;
+  std::uint64_t point_offset_, data_end_;
+  std::size_t record_length_;
+  std::uint64_t point_count_;
+  LazChunkTable table_;
+  std::size_t chunk_ = 0;            // chunks started
+  std::uint64_t left_in_chunk_ = 0;  // points of the current chunk still to decode
+  std::uint64_t decoded_ = 0;
+};
+
+}  // namespace plumb::io

@@ -1,0 +1,457 @@
+// Tests of the LAZ reader (the point-wise LASzip coder) on the reference files in
+// ../shared/data/formats (its README says where each comes from). Each LAZ there has an
+// uncompressed LAS twin holding the same points, checked with LASzip 3.5.1 and laz-perf: decoding
+// the LAZ must give the LAS file's point records byte for byte, and the same points. LASzip's own
+// broken files, layered (LAS 1.4) files and copies edited here (a moved or missing chunk table,
+// variable chunks, truncation, corrupt chunks, edited VLRs) must stop with plumb::Error saying
+// what and where. Each test skips when its file is absent.
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <chrono>
+#include <cstring>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/io/file_source.h"
+#include "engine/io/las_reader.h"
+#include "engine/io/laz_chunk_table.h"
+#include "engine/io/point_reader.h"
+#include "tests/engine/io/laz_test_encoder.h"
+#include "tests/support/shared_data.h"
+#include "tests/support/temp_directory.h"
+
+namespace plumb::io {
+namespace {
+
+struct Records {
+  std::size_t record_length = 0;
+  std::vector<std::byte> bytes;  // every record, in file order
+  CloudInfo info;
+};
+
+// Every record of a LAS or LAZ file, read in batches of `batch` (odd sizes cross LAZ chunks).
+Records readRecords(const std::string& path, std::size_t batch = 7'777) {
+  auto reader = openLasRecords(path);
+  Records records;
+  records.record_length = reader->recordLength();
+  records.info = reader->info();
+  std::vector<std::byte> some;
+  while (reader->readRecords(some, batch) > 0) records.bytes.insert(records.bytes.end(), some.begin(), some.end());
+  return records;
+}
+
+std::vector<PointRecord> readPoints(const std::string& path, ReadCounts* counts = nullptr) {
+  auto reader = openPointCloud(path);
+  std::vector<PointRecord> points;
+  PointBatch batch;
+  while (reader->read(batch, 1'000)) points.insert(points.end(), batch.points.begin(), batch.points.end());
+  if (counts) *counts = reader->counts();
+  return points;
+}
+
+// The message of the plumb::Error that reading all of `path` throws, or "" if it reads.
+std::string errorReading(const std::string& path) {
+  try {
+    readRecords(path);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// Where two record blocks first differ, for messages: "record 12 byte 3", or "".
+std::string firstDifference(const Records& a, const Records& b) {
+  const std::size_t n = std::min(a.bytes.size(), b.bytes.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (a.bytes[i] != b.bytes[i]) {
+      return "record " + std::to_string(i / a.record_length) + " byte " + std::to_string(i % a.record_length);
+    }
+  }
+  return a.bytes.size() == b.bytes.size() ? "" : "the lengths";
+}
+
+template <typename T>
+void put(std::string& bytes, std::size_t at, T value) {
+  std::memcpy(bytes.data() + at, &value, sizeof(T));
+}
+
+template <typename T>
+T get(const std::string& bytes, std::size_t at) {
+  T value;
+  std::memcpy(&value, bytes.data() + at, sizeof(T));
+  return value;
+}
+
+// Offset of the laszip VLR's payload in a LAZ file image.
+std::size_t laszipPayloadAt(const std::string& file) {
+  const std::size_t user_id = file.find("laszip encoded");
+  EXPECT_NE(user_id, std::string::npos);
+  return user_id - 2 + 54;
+}
+
+std::size_t pointOffsetOf(const std::string& file) {
+  return get<std::uint32_t>(file, 96);
+}
+
+// ---- Pairs -----------------------------------------------------------------------------------
+
+struct Pair {
+  const char* laz;
+  const char* las;
+  std::uint64_t points;
+  const char* format;  // the LAZ's CloudInfo::format
+};
+
+// Every pair of the README's table that the point-wise coder wrote (1_4_w_evlr and the other
+// LAS 1.4 point format 6 to 8 pairs use the layered coder, refused below).
+const Pair kPairs[] = {
+    {"laz/point10.las.laz", "las/point10.las", 1'065, "LAZ 1.2 point format 0"},
+    {"laz/point-time.las.laz", "las/point-time.las", 1'065, "LAZ 1.2 point format 1"},
+    {"laz/point-color.las.laz", "las/point-color.las", 1'065, "LAZ 1.2 point format 2"},
+    {"laz/point-color-time.las.laz", "las/point-color-time.las", 1'065, "LAZ 1.2 point format 3"},
+    {"laz/extrabytes.laz", "las/extrabytes.las", 1'065, "LAZ 1.2 point format 3"},
+    {"laz/point10-1.0.laz", "las/point10-1.0.las", 1, "LAZ 1.0 point format 0"},
+    {"laz/no-points-1.3.laz", "las/no-points-1.3.las", 0, "LAZ 1.3 point format 0"},
+    {"laz/simple.laz", "las/simple.las", 1'065, "LAZ 1.2 point format 3"},
+    {"laz/simple-laszip-compressor-version-1.2r0.laz", "las/simple.las", 1'065, "LAZ 1.2 point format 3"},
+    {"laz/laszip-generated_with2bytespadding.laz", "las/simple.las", 1'065, "LAZ 1.2 point format 3"},
+    {"laz/liblas-generated.laz", "las/simple.las", 1'065, "LAZ 1.2 point format 3"},
+    {"laz/autzen_trim.laz", "las/autzen_trim.las", 110'000, "LAZ 1.2 point format 3"},
+    {"laz/point-time-1.4.las.laz", "las/point-time.las", 1'065, "LAZ 1.4 point format 1"},
+};
+
+class LazPair : public ::testing::TestWithParam<Pair> {};
+
+TEST_P(LazPair, DecodesToTheRecordsAndPointsOfItsLasTwin) {
+  const Pair& pair = GetParam();
+  PLUMB_REQUIRE_FORMAT_FILE(laz_path, pair.laz);
+  PLUMB_REQUIRE_FORMAT_FILE(las_path, pair.las);
+
+  // The raw records, bit for bit: every field, GPS time and extra bytes included.
+  const Records laz = readRecords(laz_path);
+  const Records las = readRecords(las_path);
+  EXPECT_EQ(laz.info.format, pair.format);
+  EXPECT_EQ(laz.info.declared_points, pair.points);
+  ASSERT_EQ(laz.record_length, las.record_length);
+  ASSERT_EQ(laz.bytes.size(), pair.points * las.record_length);
+  EXPECT_TRUE(laz.bytes == las.bytes) << "first difference: " << firstDifference(laz, las);
+
+  // The points as Plumb keeps them, field by field.
+  ReadCounts counts;
+  const std::vector<PointRecord> laz_points = readPoints(laz_path, &counts);
+  const std::vector<PointRecord> las_points = readPoints(las_path);
+  EXPECT_EQ(counts.delivered, pair.points);
+  ASSERT_EQ(laz_points.size(), las_points.size());
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < laz_points.size() && mismatches < 5; ++i) {
+    const PointRecord& a = laz_points[i];
+    const PointRecord& b = las_points[i];
+    const bool same = a.x == b.x && a.y == b.y && a.z == b.z && a.intensity == b.intensity && a.rgb == b.rgb;
+    if (!same) {
+      ++mismatches;
+      ADD_FAILURE() << "point " << i << ": LAZ (" << a.x << ", " << a.y << ", " << a.z << ") intensity " << a.intensity
+                    << ", LAS (" << b.x << ", " << b.y << ", " << b.z << ") intensity " << b.intensity;
+    }
+  }
+  EXPECT_EQ(laz.info.attributes.colour, las.info.attributes.colour);
+  EXPECT_EQ(laz.info.ignored_fields, las.info.ignored_fields);
+}
+
+std::string pairName(const ::testing::TestParamInfo<Pair>& info) {
+  std::string name;
+  for (const char* c = info.param.laz + 4; *c != '\0'; ++c)
+    name += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(LazData, LazPair, ::testing::ValuesIn(kPairs), pairName);
+
+// ---- Files that are refused ------------------------------------------------------------------
+
+TEST(LazData, LaszipsBrokenFilesAreRefusedNamingTheField) {
+  // LASzip's data/broken_*.laz: LAS 1.0, the laszip VLR's payload at byte 227 + 54 = 281.
+  struct Case {
+    const char* file;
+    const char* where;
+    const char* what;
+  };
+  const Case cases[] = {
+      {"laz/broken_coder.laz", "at byte 283", "coder 15"},
+      {"laz/broken_compressor.laz", "at byte 281", "compressor 16"},
+      {"laz/broken_type.laz", "at byte 321", "item 2 of the laszip VLR has type 22"},
+      {"laz/broken_size.laz", "at byte 319", "POINT10 version 6"},
+      {"laz/broken_version.laz", "at byte 319", "POINT10 version 6"},
+  };
+  for (const Case& c : cases) {
+    PLUMB_REQUIRE_FORMAT_FILE(path, c.file);
+    const std::string message = errorReading(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find(c.where), std::string::npos) << message;
+    EXPECT_NE(message.find(c.what), std::string::npos) << message;
+  }
+}
+
+TEST(LazData, TheLayeredCoderIsRefusedClearly) {
+  for (const char* file : {"laz/1_4_w_evlr.laz", "laz/autzen-bmx-2010.laz", "laz/append-bug.laz",
+                           "laz/las_with_several_extra_byte_bloc.laz", "copc/autzen.copc.laz"}) {
+    PLUMB_REQUIRE_FORMAT_FILE(path, file);
+    std::string message;
+    try {
+      openPointCloud(path);
+    } catch (const Error& error) {
+      message = error.what();
+    }
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("the layered LAZ coder (compressor 3"), std::string::npos) << message;
+    EXPECT_NE(message.find("not read yet"), std::string::npos) << message;
+  }
+}
+
+// ---- Edited copies of autzen_trim.laz (3 chunks of 50 000, 50 000 and 10 000 points) ---------
+
+class LazEdited : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    laz_path_ = test::sharedFormatFile("laz/autzen_trim.laz");
+    las_path_ = test::sharedFormatFile("las/autzen_trim.las");
+    if (laz_path_.empty() || las_path_.empty()) GTEST_SKIP() << "laz/autzen_trim.laz or its LAS twin not found";
+    file_ = test::readFile(laz_path_);
+    point_offset_ = pointOffsetOf(file_);
+    table_offset_ = get<std::uint64_t>(file_, point_offset_);
+  }
+
+  std::string write(const std::string& bytes) { return dir_.write("edited.laz", bytes); }
+
+  void expectTheLasRecords(const std::string& path) {
+    const Records laz = readRecords(path);
+    const Records las = readRecords(las_path_);
+    EXPECT_TRUE(laz.bytes == las.bytes) << "first difference: " << firstDifference(laz, las);
+  }
+
+  // The chunks as the file's table lists them.
+  std::vector<LazChunk> chunks() {
+    FileSource source(laz_path_);
+    return readLazChunkTable(source, point_offset_, 50'000, 34, 110'000).chunks;
+  }
+
+  // The file with its table replaced by one of variable chunks: `points` and `bytes` per chunk.
+  std::string withVariableTable(const std::vector<std::uint32_t>& points, const std::vector<std::uint32_t>& bytes) {
+    std::string file = file_.substr(0, table_offset_);
+    put<std::uint32_t>(file, laszipPayloadAt(file) + 12, 0xFFFFFFFFu);  // chunk size: variable
+    std::string table(8, '\0');
+    put<std::uint32_t>(table, 4, static_cast<std::uint32_t>(points.size()));
+    test::TestRangeEncoder encoder;
+    test::TestIntegerCompressor entries(32, 2);
+    std::int32_t last_points = 0, last_bytes = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      entries.compress(encoder, last_points, static_cast<std::int32_t>(points[i]), 0);
+      entries.compress(encoder, last_bytes, static_cast<std::int32_t>(bytes[i]), 1);
+      last_points = static_cast<std::int32_t>(points[i]);
+      last_bytes = static_cast<std::int32_t>(bytes[i]);
+    }
+    for (const std::uint8_t byte : encoder.finish()) table += static_cast<char>(byte);
+    return file + table;
+  }
+
+  test::TempDirectory dir_;
+  std::string laz_path_, las_path_;
+  std::string file_;
+  std::size_t point_offset_ = 0;
+  std::uint64_t table_offset_ = 0;
+};
+
+TEST_F(LazEdited, AChunkTableStoredAtTheEndOfTheFileIsFound) {
+  // A writer that could not seek back: -1 at the start of the point data, the offset at the end.
+  std::string file = file_;
+  put<std::int64_t>(file, point_offset_, -1);
+  file.append(8, '\0');
+  put<std::uint64_t>(file, file.size() - 8, table_offset_);
+  expectTheLasRecords(write(file));
+}
+
+TEST_F(LazEdited, WithoutAChunkTableFixedChunksAreReadOneAfterAnother) {
+  // An interrupted writer leaves the table's offset pointing at itself: each chunk then starts
+  // where the previous one's compressed data ended, which holds only when the decoder reads
+  // exactly the bytes the encoder wrote.
+  std::string file = file_;
+  put<std::uint64_t>(file, point_offset_, point_offset_);
+  expectTheLasRecords(write(file));
+}
+
+TEST_F(LazEdited, VariableChunksFollowTheTablesPointCounts) {
+  const std::vector<LazChunk> listed = chunks();
+  ASSERT_EQ(listed.size(), 3u);
+  std::vector<std::uint32_t> bytes;
+  for (const LazChunk& chunk : listed) bytes.push_back(static_cast<std::uint32_t>(chunk.bytes));
+  expectTheLasRecords(write(withVariableTable({50'000, 50'000, 10'000}, bytes)));
+
+  // A table that holds one point too few.
+  const std::string message = errorReading(write(withVariableTable({50'000, 50'000, 9'999}, bytes)));
+  EXPECT_NE(message.find("hold 109999 points, where the header declares 110000"), std::string::npos) << message;
+  EXPECT_NE(message.find("at byte " + std::to_string(table_offset_ + 4)), std::string::npos) << message;
+}
+
+TEST_F(LazEdited, AChunkThatRunsPastTheTableIsRefused) {
+  std::vector<std::uint32_t> bytes;
+  for (const LazChunk& chunk : chunks()) bytes.push_back(static_cast<std::uint32_t>(chunk.bytes));
+  bytes[1] += 1'000'000;
+  const std::string message = errorReading(write(withVariableTable({50'000, 50'000, 10'000}, bytes)));
+  EXPECT_NE(message.find("chunk 2 of 3"), std::string::npos) << message;
+  EXPECT_NE(message.find("runs past the chunk table"), std::string::npos) << message;
+}
+
+TEST_F(LazEdited, ATruncatedFileLosesItsChunkTable) {
+  const std::string message = errorReading(write(file_.substr(0, 400'000)));
+  EXPECT_NE(message.find("at byte " + std::to_string(point_offset_)), std::string::npos) << message;
+  EXPECT_NE(message.find("the chunk table's offset 603333 points outside"), std::string::npos) << message;
+}
+
+TEST_F(LazEdited, AChunkTableOffsetPastTheEndIsRefused) {
+  std::string file = file_;
+  put<std::uint64_t>(file, point_offset_, file.size() + 100);
+  const std::string message = errorReading(write(file));
+  EXPECT_NE(message.find("at byte " + std::to_string(point_offset_)), std::string::npos) << message;
+  EXPECT_NE(message.find("chunk table"), std::string::npos) << message;
+}
+
+TEST_F(LazEdited, ATruncatedChunkStopsWhereItsBytesEnd) {
+  // No table to catch the truncation first: the decoder runs out of bytes in the second chunk.
+  const std::vector<LazChunk> listed = chunks();
+  ASSERT_EQ(listed.size(), 3u);
+  const std::uint64_t cut = listed[1].offset + listed[1].bytes / 2;
+  std::string file = file_.substr(0, cut);
+  put<std::uint64_t>(file, point_offset_, point_offset_);
+  const std::string message = errorReading(write(file));
+  EXPECT_NE(message.find("at byte " + std::to_string(cut)), std::string::npos) << message;
+  EXPECT_NE(message.find("truncated or corrupt LAZ data: chunk 2"), std::string::npos) << message;
+}
+
+TEST_F(LazEdited, CorruptChunksEndInAnErrorOrInOtherPoints) {
+  // Garbage in the middle of chunk 2: the decoder must never crash or read outside its chunk
+  // (ASan and UBSan builds run this too); it either runs out of the chunk's bytes or decodes other
+  // points.
+  const std::vector<LazChunk> listed = chunks();
+  ASSERT_EQ(listed.size(), 3u);
+  const Records las = readRecords(las_path_);
+  std::mt19937 random(20240601);
+  int errors = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    std::string file = file_;
+    std::uniform_int_distribution<std::uint64_t> where(listed[1].offset + 34, listed[1].offset + listed[1].bytes - 64);
+    const std::uint64_t at = where(random);
+    for (std::uint64_t i = at; i < at + 64; ++i) file[i] = static_cast<char>(random());
+    try {
+      const Records laz = readRecords(write(file));
+      EXPECT_FALSE(laz.bytes == las.bytes) << "garbage at byte " << at << " decoded to the original points";
+    } catch (const Error& error) {
+      ++errors;
+      EXPECT_NE(std::string(error.what()).find("chunk 2 of 3"), std::string::npos) << error.what();
+    }
+  }
+  std::cout << "corrupt chunks: " << errors << " of 6 ended in an error\n";
+}
+
+// ---- Edited laszip VLRs of simple.laz (LAS 1.2 point format 3) -------------------------------
+
+class LazEditedVlr : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    laz_path_ = test::sharedFormatFile("laz/simple.laz");
+    if (laz_path_.empty()) GTEST_SKIP() << "laz/simple.laz not found";
+    file_ = test::readFile(laz_path_);
+    payload_at_ = laszipPayloadAt(file_);
+  }
+
+  std::string errorOf(const std::string& bytes) { return errorReading(dir_.write("edited.laz", bytes)); }
+
+  test::TempDirectory dir_;
+  std::string laz_path_, file_;
+  std::size_t payload_at_ = 0;
+};
+
+TEST_F(LazEditedVlr, TheVlrDecidesEvenWithoutTheFormatBits) {
+  // As in LASzip: a file with the laszip VLR is compressed, whatever the format byte says.
+  std::string file = file_;
+  file[104] = 3;
+  const std::string path = dir_.write("no-bits.laz", file);
+  EXPECT_TRUE(readRecords(path).bytes == readRecords(laz_path_).bytes);
+}
+
+TEST_F(LazEditedVlr, FormatBitsWithoutTheVlrAreRefused) {
+  std::string file = file_;
+  file[payload_at_ - 54 + 2] = 'X';  // "Xaszip encoded"
+  const std::string message = errorOf(file);
+  EXPECT_NE(message.find("at byte 104"), std::string::npos) << message;
+  EXPECT_NE(message.find("no laszip VLR"), std::string::npos) << message;
+}
+
+TEST_F(LazEditedVlr, UnsupportedCompressorsItemsAndVersionsAreNamed) {
+  {
+    std::string file = file_;
+    put<std::uint16_t>(file, payload_at_, 3);
+    const std::string message = errorOf(file);
+    EXPECT_NE(message.find("at byte " + std::to_string(payload_at_)), std::string::npos) << message;
+    EXPECT_NE(message.find("layered LAZ coder"), std::string::npos) << message;
+  }
+  {
+    std::string file = file_;
+    put<std::uint16_t>(file, payload_at_ + 34 + 12 + 4, 0);  // RGB12, version 0
+    const std::string message = errorOf(file);
+    EXPECT_NE(message.find("at byte " + std::to_string(payload_at_ + 50)), std::string::npos) << message;
+    EXPECT_NE(message.find("item 3 of the laszip VLR is RGB12 version 0"), std::string::npos) << message;
+  }
+  {
+    std::string file = file_;
+    put<std::uint16_t>(file, payload_at_ + 34 + 6, 9);  // GPSTIME11 becomes WAVEPACKET13
+    const std::string message = errorOf(file);
+    EXPECT_NE(message.find("WAVEPACKET13"), std::string::npos) << message;
+  }
+  {
+    std::string file = file_;
+    put<std::uint16_t>(file, payload_at_ + 34 + 6 + 2, 9);  // GPSTIME11 of 9 bytes
+    const std::string message = errorOf(file);
+    EXPECT_NE(message.find("GPSTIME11 of 9 bytes"), std::string::npos) << message;
+  }
+  {
+    // Point format 1 with 34-byte records is POINT10, GPSTIME11 and 6 extra bytes, not RGB12.
+    std::string file = file_;
+    file[104] = static_cast<char>(0x81);
+    const std::string message = errorOf(file);
+    EXPECT_NE(message.find("are not the records of point format 1 with 34 bytes"), std::string::npos) << message;
+    EXPECT_NE(message.find("BYTE (6 bytes)"), std::string::npos) << message;
+  }
+  {
+    std::string file = file_;
+    put<std::uint16_t>(file, payload_at_ - 54 + 20, 33);  // the VLR's length: not 34 + 6 per item
+    const std::string message = errorOf(file);
+    EXPECT_NE(message.find("the laszip VLR has 33 bytes"), std::string::npos) << message;
+  }
+}
+
+// ---- Speed -----------------------------------------------------------------------------------
+
+TEST(LazData, DecodingSpeedIsPrinted) {
+  // A figure for the log, never asserted (tests do not time): Release, one thread.
+  PLUMB_REQUIRE_FORMAT_FILE(path, "laz/autzen_trim.laz");
+  double best_s = 1e9;
+  std::size_t points = 0;
+  for (int pass = 0; pass < 3; ++pass) {
+    const auto start = std::chrono::steady_clock::now();
+    auto reader = openLasRecords(path);
+    std::vector<std::byte> records;
+    points = 0;
+    while (const std::size_t n = reader->readRecords(records, 65'536)) points += n;
+    best_s = std::min(best_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  EXPECT_EQ(points, 110'000u);
+  std::cout << "LAZ decoding (autzen_trim.laz, point format 3): " << points << " points in " << best_s * 1e3 << " ms, "
+            << static_cast<double>(points) / best_s / 1e6 << " million points per second\n";
+}
+
+}  // namespace
+}  // namespace plumb::io
