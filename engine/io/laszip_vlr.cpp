@@ -3,6 +3,7 @@
 #include <array>
 
 #include "engine/io/byte_order.h"
+#include "engine/io/laz_layered_items.h"
 
 namespace plumb::io {
 namespace {
@@ -47,6 +48,78 @@ std::vector<LazItem> itemsOfFormat(unsigned format, std::size_t record_length) {
                      static_cast<std::uint16_t>(record_length - kStandardBytes[format]), 0});
   }
   return items;
+}
+
+// The layered coder's items of LAS 1.4 point formats 6 to 8: POINT14, RGB14 (7) or RGBNIR14 (8),
+// then BYTE14 for the extra bytes.
+std::vector<LazItem> itemsOfFormat14(unsigned format, std::size_t record_length) {
+  constexpr std::array<std::size_t, 3> kBytes14{30, 36, 38};
+  std::vector<LazItem> items{{static_cast<std::uint16_t>(LazItemType::kPoint14), 30, 0}};
+  if (format == 7) items.push_back({static_cast<std::uint16_t>(LazItemType::kRgb14), 6, 0});
+  if (format == 8) items.push_back({static_cast<std::uint16_t>(LazItemType::kRgbNir14), 8, 0});
+  if (record_length > kBytes14[format - 6]) {
+    items.push_back({static_cast<std::uint16_t>(LazItemType::kByte14),
+                     static_cast<std::uint16_t>(record_length - kBytes14[format - 6]), 0});
+  }
+  return items;
+}
+
+// Checks the items of a layered (compressor 3) VLR, as readLaszipVlr documents.
+void checkLayeredItems(const LaszipVlr& vlr, std::uint64_t at, const FileSource& source, unsigned format,
+                       std::size_t record_length) {
+  const std::string where = "the laszip VLR";
+  for (std::size_t i = 0; i < vlr.items.size(); ++i) {
+    const LazItem& item = vlr.items[i];
+    const std::uint64_t item_at = at + kItemsAt + kItemBytes * i;
+    const std::string name = "item " + std::to_string(i + 1) + " of " + where;
+    switch (static_cast<LazItemType>(item.type)) {
+      case LazItemType::kPoint14:
+      case LazItemType::kRgb14:
+      case LazItemType::kRgbNir14:
+      case LazItemType::kByte14:
+        break;
+      case LazItemType::kWavePacket13:
+      case LazItemType::kWavePacket14:
+        throw source.errorAt(item_at, name + " is " + lazItemName(item.type) +
+                                          ": waveform packets (point formats 4, 5, 9 and 10) are not read");
+      case LazItemType::kByte:
+      case LazItemType::kPoint10:
+      case LazItemType::kGpsTime11:
+      case LazItemType::kRgb12:
+        throw source.errorAt(item_at, name + " is " + lazItemName(item.type) +
+                                          ", an item of the point-wise coder, which the layered coder (compressor 3) "
+                                          "does not code: a corrupt LAZ file");
+      default:
+        throw source.errorAt(item_at, name + " has type " + std::to_string(item.type) +
+                                          ", which LASzip does not define: a corrupt or newer LAZ file");
+    }
+    if (item.version != 3 && item.version != 4) {
+      throw source.errorAt(item_at + 4,
+                           name + " is " + lazItemName(item.type) + " version " + std::to_string(item.version) +
+                               ": the layered LAZ coder has versions 3 and 4 (a corrupt or newer file)");
+    }
+    if (!makeLazLayeredItemDecoder(item)) {
+      throw source.errorAt(item_at + 2, name + " is " + lazItemName(item.type) + " of " + std::to_string(item.size) +
+                                            " bytes, a size that item does not have (a corrupt LAZ header)");
+    }
+  }
+  if (format < 6 || format > 8) {
+    throw source.errorAt(at + kItemsAt, "point format " + std::to_string(format) +
+                                            " compressed with the layered LAZ coder: Plumb reads layered LAZ point "
+                                            "formats 6 to 8 (9 and 10 carry waveforms; 0 to 5 take the point-wise "
+                                            "coder)");
+  }
+  const std::vector<LazItem> expected = itemsOfFormat14(format, record_length);
+  bool match = expected.size() == vlr.items.size();
+  for (std::size_t i = 0; match && i < expected.size(); ++i) {
+    match = expected[i].type == vlr.items[i].type && expected[i].size == vlr.items[i].size;
+  }
+  if (!match) {
+    throw source.errorAt(at + kItemsAt, "the items of " + where + " (" + itemList(vlr.items) +
+                                            ") are not the records of point format " + std::to_string(format) +
+                                            " with " + std::to_string(record_length) + " bytes (" + itemList(expected) +
+                                            "): a corrupt LAZ header");
+  }
 }
 
 }  // namespace
@@ -116,18 +189,15 @@ LaszipVlr readLaszipVlr(std::span<const std::byte> payload, std::uint64_t at, co
                          loadLittleEndian<std::uint16_t>(item + 4)});
   }
 
-  if (vlr.compressor == LazCompressor::kLayeredChunked) {
-    throw source.errorAt(
-        at + kCompressorAt,
-        "the layered LAZ coder (compressor 3, LAS 1.4 point formats 6 to 10, written by " + vlr.writer() +
-            ") is not read yet; Plumb reads the point-wise coder (LAS point formats 0 to 3). "
-            "Decompress the file first (laszip -i in.laz -o out.las, or pdal translate in.laz out.las)");
-  }
   if (vlr.coder != kArithmeticCoder) {
     throw source.errorAt(at + kCoderAt, where + " names coder " + std::to_string(vlr.coder) +
                                             ", where LASzip has only coder 0 (arithmetic): a corrupt LAZ file");
   }
   if (vlr.compressor == LazCompressor::kNone) return vlr;  // raw records: the items do not matter
+  if (vlr.compressor == LazCompressor::kLayeredChunked) {
+    checkLayeredItems(vlr, at, source, format, record_length);
+    return vlr;
+  }
 
   // Each item on its own, then the list against the point format.
   for (std::size_t i = 0; i < item_count; ++i) {

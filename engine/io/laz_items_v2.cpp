@@ -39,6 +39,7 @@
 #include "engine/io/byte_order.h"
 #include "engine/io/laz_integer_decompressor.h"
 #include "engine/io/laz_items.h"
+#include "engine/io/laz_streaming_median.h"
 
 namespace plumb::io {
 namespace {
@@ -73,39 +74,6 @@ std::int32_t wrappingAdd(std::int32_t a, std::int32_t b) {
 std::uint8_t clampToByte(int value) {
   return static_cast<std::uint8_t>(std::clamp(value, 0, 255));
 }
-
-// The median of the last five values added, kept sorted. Each new value replaces the largest or
-// the smallest of the five, alternately by where values fall: after a value in the upper half the
-// smallest goes next, after one in the lower half the largest, so the five stay around the median.
-class StreamingMedian5 {
- public:
-  void reset() {
-    values_ = {};
-    replace_largest_ = true;
-  }
-
-  std::int32_t median() const { return values_[2]; }
-
-  void add(std::int32_t value) {
-    if (replace_largest_) {
-      const bool upper = value >= values_[2];
-      std::size_t i = 4;
-      for (; i > 0 && values_[i - 1] > value; --i) values_[i] = values_[i - 1];
-      values_[i] = value;
-      if (upper) replace_largest_ = false;
-    } else {
-      const bool lower = value <= values_[2];
-      std::size_t i = 0;
-      for (; i < 4 && values_[i + 1] < value; ++i) values_[i] = values_[i + 1];
-      values_[i] = value;
-      if (lower) replace_largest_ = true;
-    }
-  }
-
- private:
-  std::array<std::int32_t, 5> values_{};
-  bool replace_largest_ = true;
-};
 
 class Point10V2 final : public LazItemDecoder {
  public:

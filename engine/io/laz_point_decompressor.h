@@ -1,6 +1,6 @@
 #pragma once
 // The point data of a LAZ file written with the point-wise LASzip coder (compressor 1, one
-// stream; compressor 2, chunks), decoded into the exact bytes of the uncompressed LAS point
+// stream; compressor 2, chunks) or the layered one (compressor 3, chunks of layers), decoded into the exact bytes of the uncompressed LAS point
 // records, after the LASzip reference implementation, src/lasreadpoint.cpp (read, not copied);
 // Isenburg 2013, "LASzip: lossless compression of LiDAR data", PE&RS 79(2).
 //
@@ -11,6 +11,10 @@
 //      each item decoding its bytes of the record in turn.
 //   3. A chunk's compressed bytes end where the table says (or at the end of the point data):
 //      a decoder that needs more stops with plumb::Error naming the chunk and the offset.
+//   4. Layered chunks (compressor 3): the first point raw, a u32 count of the chunk's points,
+//      then a u32 size per layer of every item in turn (laz_layered_items.h), then the layers back
+//      to back, each decoded by its own arithmetic decoder over its own bytes. A layer that runs
+//      past the chunk stops with plumb::Error naming the layer, the chunk and the offset.
 //
 // Streaming: one chunk's models and a 64 KiB read buffer, never the whole file. Not thread-safe.
 
@@ -25,12 +29,13 @@
 #include "engine/io/laz_arithmetic_decoder.h"
 #include "engine/io/laz_chunk_table.h"
 #include "engine/io/laz_items.h"
+#include "engine/io/laz_layered_items.h"
 
 namespace plumb::io {
 
 class LazPointDecompressor {
  public:
-  // `vlr`: checked by readLaszipVlr, compressor 1 or 2. The point data starts at `point_offset`
+  // `vlr`: checked by readLaszipVlr, compressor 1, 2 or 3. The point data starts at `point_offset`
   // and ends by `data_end` (the EVLRs or the end of the file); `point_count` records of
   // `record_length` bytes. Reads the chunk table; throws plumb::Error when it is malformed.
   LazPointDecompressor(FileSource& source, const LaszipVlr& vlr, std::uint64_t point_offset, std::uint64_t data_end,
@@ -44,17 +49,26 @@ class LazPointDecompressor {
 
  private:
   void startChunk(std::byte* record);
+  void startLayers(std::uint64_t chunk_end);
 
   FileSource& source_;
   LazByteInput input_;
   LazArithmeticDecoder decoder_;
   std::vector<std::unique_ptr<LazItemDecoder>> items_;
   std::vector<std::size_t> item_offsets_;  // in the record
+  // Layered coder only: its items, every item's layers in turn, and each item's first layer.
+  std::vector<std::unique_ptr<LazLayeredItemDecoder>> layered_items_;
+  std::vector<std::unique_ptr<LazLayer>> layers_;
+  std::vector<LazLayer*> layer_pointers_;
+  std::vector<std::size_t> first_layer_;
+  unsigned context_ = 0;           // the scanner channel POINT14 decodes
+  std::uint64_t next_chunk_ = 0;   // layered chunks without a table: where the next one starts
   bool chunked_;
   std::uint32_t chunk_size_;
   std::uint64_t point_offset_, data_end_;
   std::size_t record_length_;
   std::uint64_t point_count_;
+  bool layered_;
   LazChunkTable table_;
   std::size_t chunk_ = 0;            // chunks started
   std::uint64_t left_in_chunk_ = 0;  // points of the current chunk still to decode

@@ -413,7 +413,8 @@ TEST_F(LazReader, RefusesMalformedVlrsNamingTheField) {
   add(
       "compressor", [](LazSpec& s) { s.compressor = 4; }, kPayloadAt, "names compressor 4");
   add(
-      "layered", [](LazSpec& s) { s.compressor = 3; }, kPayloadAt, "the layered LAZ coder (compressor 3");
+      "layered", [](LazSpec& s) { s.compressor = 3; }, kPayloadAt + 34,
+      "is POINT10, an item of the point-wise coder, which the layered coder (compressor 3) does not code");
   add(
       "no items", [](LazSpec& s) { s.items = std::vector<Item>{}; }, kPayloadAt, "the laszip VLR has 34 bytes");
   add(
