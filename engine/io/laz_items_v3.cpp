@@ -28,7 +28,11 @@
 //   the last plus a symbol (mod 256), per channel.
 // Version 3 of the items after POINT14 keeps predicting from the previous channel's last values
 // when the point switches to a channel already seen in the chunk (and writes them there); version 4
-// uses that channel's own. POINT14 v3 and v4 decode alike.
+// uses that channel's own. POINT14 v3 and v4 decode their own fields alike, but POINT14 v3 tells
+// the items after it the channel only on a point that switches channel, and channel 0 on every
+// other point (the reference starts each point's context at 0 and only v3's switch sets it), so
+// that the colours and extra bytes of a v3 file whose points leave channel 0 flip between their
+// channel's context and channel 0's: LASzip and laz-perf decode PDAL's tindex clips so.
 
 #include <algorithm>
 #include <array>
@@ -154,6 +158,8 @@ constexpr std::size_t kPoint14Bytes = 30;
 
 class Point14V3 final : public LazLayeredItemDecoder {
  public:
+  explicit Point14V3(bool version4) : version4_(version4) {}
+
   std::size_t layerCount() const override { return kLayers; }
   std::string layerName(std::size_t layer) const override {
     static constexpr std::array<const char*, kLayers> kNames{
@@ -190,6 +196,10 @@ class Point14V3 final : public LazLayeredItemDecoder {
         channel = used_[next];
         channel->last.scanner_channel = next;
       }
+      // Version 3 names the channel to the items after it only on the point that switches; on
+      // the others they are told channel 0 (the reference's context starts at 0 for each point).
+      // Version 4 always names the current one.
+      if (version4_) context = current_;
       changed_ = changed;
     }
     Point14& last = channel->last;
@@ -433,6 +443,7 @@ class Point14V3 final : public LazLayeredItemDecoder {
     }
   }
 
+  bool version4_;
   std::array<LazLayer*, kLayers> layers_{};
   std::array<std::unique_ptr<Channel>, kChannels> channels_;  // kept across chunks, reset when used
   std::array<Channel*, kChannels> used_{};                     // those started in this chunk
@@ -658,7 +669,7 @@ std::unique_ptr<LazLayeredItemDecoder> makeLazLayeredItemDecoder(const LazItem& 
   const bool version4 = item.version == 4;
   switch (static_cast<LazItemType>(item.type)) {
     case LazItemType::kPoint14:
-      if (item.size == kPoint14Bytes) return std::make_unique<Point14V3>();
+      if (item.size == kPoint14Bytes) return std::make_unique<Point14V3>(version4);
       break;
     case LazItemType::kRgb14:
       if (item.size == 6) return std::make_unique<RgbNir14>(false, version4);

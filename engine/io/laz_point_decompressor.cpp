@@ -132,7 +132,9 @@ void LazPointDecompressor::decode(std::span<std::byte> records) {
     if (left_in_chunk_ == 0) {
       startChunk(record);
     } else if (layered_) {
-      for (std::size_t i = 0; i < layered_items_.size(); ++i) layered_items_[i]->decode(record + item_offsets_[i], context_);
+      // The context starts at 0 for every point: POINT14 v3 sets it only when the channel switches.
+      unsigned context = 0;
+      for (std::size_t i = 0; i < layered_items_.size(); ++i) layered_items_[i]->decode(record + item_offsets_[i], context);
     } else {
       for (std::size_t i = 0; i < items_.size(); ++i) items_[i]->decode(decoder_, record + item_offsets_[i]);
     }

@@ -61,7 +61,7 @@ class LazPointDecompressor {
   std::vector<std::unique_ptr<LazLayer>> layers_;
   std::vector<LazLayer*> layer_pointers_;
   std::vector<std::size_t> first_layer_;
-  unsigned context_ = 0;           // the scanner channel POINT14 decodes
+  unsigned context_ = 0;           // the scanner channel of a chunk's first point
   std::uint64_t next_chunk_ = 0;   // layered chunks without a table: where the next one starts
   bool chunked_;
   std::uint32_t chunk_size_;
