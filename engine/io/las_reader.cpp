@@ -1,7 +1,7 @@
 // LAS and LAZ reader (ASPRS LAS Specification 1.4 R15, 2019; also reads LAS 1.0 to 1.3, whose
 // headers are prefixes of the 1.4 one). Point data record formats 0 to 10 uncompressed; LAZ
-// (compressed LAS) written with the point-wise LASzip coder, point formats 0 to 3
-// (laz_point_decompressor.h).
+// (compressed LAS) written with the point-wise LASzip coder, point formats 0 to 3, or the layered
+// one, point formats 6 to 8 (laz_point_decompressor.h).
 //
 //   1. Read the public header block: "LASF", version 1.0 to 1.4, header size (at least 227
 //      bytes, 235 for 1.3, 375 for 1.4), offset to point data, point format and record length,

@@ -27,7 +27,7 @@ enum class LazCompressor : std::uint16_t {
   kNone = 0,              // point records stored raw
   kPointwise = 1,         // one arithmetic-coded stream, no chunks (LASzip 1.x)
   kPointwiseChunked = 2,  // chunks and a chunk table (LASzip 2.x and later)
-  kLayeredChunked = 3,    // LAS 1.4 point formats 6 to 10 (LASzip 3.x); not read
+  kLayeredChunked = 3,    // LAS 1.4 point formats 6 to 10 (LASzip 3.x); 6 to 8 are read
 };
 
 // The chunk size that marks variable chunks.
@@ -52,11 +52,13 @@ std::string lazItemName(std::uint16_t type);
 // of LAS point format `format` (the format byte without its compression bits) and records of
 // `record_length` bytes. Refuses, with plumb::Error naming the file, the offset of the field and
 // what is wrong: a payload that is not 34 bytes plus 6 per item (at least one item); a compressor
-// other than 0 to 3, or 3 (the layered coder of LAS 1.4, not read yet); a coder other than 0; and
-// for compressors 1 and 2, an item of unknown type, of a version other than 1 and 2, of the wrong
-// size, of a kind not read (waveform packets, LAS 1.4 items), or items that are not those of the
-// point format and record length (POINT10, then GPSTIME11 for formats 1 and 3, RGB12 for 2 and 3,
-// then BYTE for the extra bytes).
+// other than 0 to 3; a coder other than 0; for compressors 1 and 2, an item of unknown type, of a
+// version other than 1 and 2, of the wrong size, of a kind not read (waveform packets, LAS 1.4
+// items), or items that are not those of the point format and record length (POINT10, then
+// GPSTIME11 for formats 1 and 3, RGB12 for 2 and 3, then BYTE for the extra bytes); for
+// compressor 3, an item that is not POINT14, RGB14, RGBNIR14 or BYTE14 (WAVEPACKET14: waveforms
+// are not read), of a version other than 3 and 4, of the wrong size, or items that are not those
+// of point formats 6 to 8 (POINT14, then RGB14 for 7 or RGBNIR14 for 8, then BYTE14).
 LaszipVlr readLaszipVlr(std::span<const std::byte> payload, std::uint64_t at, const FileSource& source, unsigned format,
                         std::size_t record_length);
 

@@ -1,10 +1,11 @@
-// Tests of the LAZ reader (the point-wise LASzip coder) on the reference files in
-// ../shared/data/formats (its README says where each comes from). Each LAZ there has an
-// uncompressed LAS twin holding the same points, checked with LASzip 3.5.1 and laz-perf: decoding
-// the LAZ must give the LAS file's point records byte for byte, and the same points. LASzip's own
-// broken files, layered (LAS 1.4) files and copies edited here (a moved or missing chunk table,
-// variable chunks, truncation, corrupt chunks, edited VLRs) must stop with plumb::Error saying
-// what and where. Each test skips when its file is absent.
+// Tests of the LAZ reader (the point-wise and the layered LASzip coders) on the reference files in
+// ../shared/data/formats (its README says where each comes from). A LAZ with an uncompressed LAS
+// twin holding the same points, checked with LASzip 3.5.1 and laz-perf, must decode to the LAS
+// file's point records byte for byte, and the same points; one without (a layered file, the COPC
+// files) to records whose sha256 the README gives. LASzip's own broken files and copies edited
+// here (a moved or missing chunk table, variable chunks, truncation, corrupt chunks and layers,
+// edited VLRs) must stop with plumb::Error saying what and where. Each test skips when its file
+// is absent.
 
 #include <gtest/gtest.h>
 
