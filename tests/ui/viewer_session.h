@@ -73,15 +73,27 @@ inline int runViewerSession(const TempDirectory& dir, const std::string& argumen
   return status;
 }
 
-// PLUMB_TEST_SCREENSHOTS=DIR keeps a session's screenshots there, for a person to look at.
+// PLUMB_TEST_SCREENSHOTS=DIR keeps a session's screenshots there, for a person to look at, and
+// its script and scene dump as <test>.session.json and <test>.scene.json, for scripts/replay-check
+// to compare replays.
 inline void keepScreenshots(const TempDirectory& dir) {
   const char* keep = std::getenv("PLUMB_TEST_SCREENSHOTS");
+  if (keep == nullptr) return;
+  const std::filesystem::path to(keep);
+  std::filesystem::create_directories(to);
   const std::filesystem::path shots = dir.file("shots");
-  if (keep == nullptr || !std::filesystem::exists(shots)) return;
-  std::filesystem::create_directories(keep);
-  for (const auto& entry : std::filesystem::directory_iterator(shots)) {
-    std::filesystem::copy_file(entry.path(), std::filesystem::path(keep) / entry.path().filename(),
-                               std::filesystem::copy_options::overwrite_existing);
+  if (std::filesystem::exists(shots)) {
+    for (const auto& entry : std::filesystem::directory_iterator(shots)) {
+      std::filesystem::copy_file(entry.path(), to / entry.path().filename(),
+                                 std::filesystem::copy_options::overwrite_existing);
+    }
+  }
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  for (const char* kept : {"session", "scene"}) {
+    const std::filesystem::path from = dir.file(std::string(kept) + ".json");
+    if (std::filesystem::exists(from)) {
+      std::filesystem::copy_file(from, to / (test + "." + kept + ".json"), std::filesystem::copy_options::overwrite_existing);
+    }
   }
 }
 

@@ -57,6 +57,7 @@ TEST(Viewer, AClickOnTheDemoWallGrowsItsPlane) {
       {{"screenshot", "3-top.png"}},
   });
   ASSERT_EQ(plumb::test::runViewerSession(dir, "", steps, 1280, 720, "XDG_CACHE_HOME='" + cache.string() + "'"), 0);
+  plumb::test::keepScreenshots(dir);
 
   // The segment on the wall.
   const json dump = readJson(scene);
@@ -137,6 +138,7 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   arguments += camera.string();
   arguments += "'";
   ASSERT_EQ(plumb::test::runViewerSession(dir, arguments, steps), 0);
+  plumb::test::keepScreenshots(dir);
   const json dump = readJson(scene);
   ASSERT_GE(dump.at("segments").size(), 3u);
   double nearest_m = INFINITY;

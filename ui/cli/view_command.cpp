@@ -56,6 +56,10 @@ Command addViewCommand(CLI::App& plumb) {
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   sub->add_flag("!--fixed-quality", options->adaptive_quality,
                 "Render a moving view as a still one (by default it drops resolution and points to keep 30 fps)");
+  sub->add_flag("--real-time", options->script_wall_clock,
+                "With --script: frames last what they take (dynamic resolution, double clicks, waits in ms); by "
+                "default a script runs at 30 frames per second of its own clock and replays the same whatever the "
+                "machine's load");
   sub->add_flag("--profile", options->profile,
                 "With --script: time the splat and the resolve of each moving frame on the GPU and print them");
   sub->add_option("--headless-out", *headless_out,

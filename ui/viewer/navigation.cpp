@@ -33,6 +33,9 @@ void Navigator::set(const view::Camera& camera) {
   if (view::findCameraProblem(camera)) return;  // a degenerate step (a zoom onto the eye): keep the last view
   camera_ = camera;
   changed_ = true;
+  // Two clicks on different views are two clicks, wherever they fall on the screen: a click
+  // after a view preset or a scripted look (which centre what is clicked) is not a double click.
+  last_click_time_s_ = -1.0;
 }
 
 void Navigator::setViewport(int width_px, int height_px) {

@@ -6,7 +6,7 @@
 //   right or middle  pan: what lies under the cursor follows it
 //   wheel            zoom towards the point under the cursor
 //   double click     focus: the view turns to the point and moves halfway to it (two clicks
-//                    within 0.4 s and 6 pixels)
+//                    within 0.4 s and 6 pixels on a view that did not change between them)
 //   F                fly mode on and off: W A S D move, Q E down and up, left drag looks around,
 //                    Shift faster; the wheel changes the speed
 //   1 2 3 4          top, front, side, iso views (orthographic but iso); O perspective and
@@ -35,7 +35,7 @@ class Navigator {
   // Reacts to one event. A left click that did not move (press and release within a few pixels)
   // is not navigation: it returns true then, for the active tool to use.
   bool handle(const InputEvent& event, const PickAt& pick);
-  // Moves a flying camera by the keys held for `delta_s` seconds.
+  // Moves a flying camera by the keys held for `delta_s` seconds; the clock of double clicks.
   void update(double delta_s);
 
   void setViewport(int width_px, int height_px);

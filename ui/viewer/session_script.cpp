@@ -272,7 +272,8 @@ std::vector<ScriptStep> readSessionScript(const std::string& path) {
   return out;
 }
 
-ScriptPlayer::ScriptPlayer(std::vector<ScriptStep> steps) : steps_(steps.begin(), steps.end()) {}
+ScriptPlayer::ScriptPlayer(std::vector<ScriptStep> steps, ScriptClock clock)
+    : steps_(steps.begin(), steps.end()), clock_(clock) {}
 
 ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
   ScriptFrame frame;
@@ -327,6 +328,11 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
         done();
         continue;
       case ScriptStep::Kind::kWaitMs:
+        if (clock_ == ScriptClock::kScript) {
+          if (static_cast<double>(frames_waited_++) * kScriptFrameMs < step.ms) return frame;
+          done();
+          continue;
+        }
         if (!wait_started_) wait_started_ = Clock::now();
         if (std::chrono::duration<double, std::milli>(Clock::now() - *wait_started_).count() < step.ms) return frame;
         done();

@@ -84,15 +84,23 @@ struct ScriptFrame {
   std::optional<std::string> failure;                               // a wait timed out: the session fails
 };
 
+// A scripted session runs on the script's clock: each frame lasts kScriptFrameMs for everything
+// the viewer times (double clicks, fly moves, Dear ImGui, dynamic resolution, "wait ms"), so a
+// replay does the same, frame for frame, whatever the machine's load. The wall clock instead
+// (ScriptClock::kWall) is for measuring what navigation costs; waits' timeouts always use it.
+constexpr double kScriptFrameMs = 1000.0 / 30.0;
+enum class ScriptClock : std::uint8_t { kScript, kWall };
+
 class ScriptPlayer {
  public:
-  explicit ScriptPlayer(std::vector<ScriptStep> steps);
+  explicit ScriptPlayer(std::vector<ScriptStep> steps, ScriptClock clock = ScriptClock::kScript);
   // The next frame's part of the script. `grower_idle`, `streaming_idle`: the viewer's state.
   ScriptFrame next(bool grower_idle, bool streaming_idle);
 
  private:
   using Clock = std::chrono::steady_clock;
   std::deque<ScriptStep> steps_;
+  ScriptClock clock_;
   std::size_t frame_index_ = 0;  // in the front step's frames
   std::uint64_t frames_waited_ = 0;
   std::optional<Clock::time_point> wait_started_;

@@ -79,7 +79,10 @@ Viewer::Viewer(const ViewerOptions& options)
   grow_panel_.plane_threshold_m = static_cast<float>(options.plane_threshold_m);
   grow_panel_.threshold_from_data = options.plane_threshold_from_data;
   jobs_.setWakeUp([] { Window::wakeUp(); });
-  if (!options.script.empty()) script_.emplace(readSessionScript(options.script));
+  if (!options.script.empty()) {
+    script_.emplace(readSessionScript(options.script),
+                    options.script_wall_clock ? ScriptClock::kWall : ScriptClock::kScript);
+  }
   openProject();
   startLoading();
 }
@@ -325,6 +328,7 @@ int Viewer::run() {
     const Clock::time_point now = Clock::now();
     frame_ms_ = std::chrono::duration<double, std::milli>(now - last_frame_).count();
     last_frame_ = now;
+    clock_frame_ms_ = script_ && !options_.script_wall_clock ? kScriptFrameMs : frame_ms_;
     frame_ms_avg_ = frames_ == 0 ? frame_ms_ : frame_ms_avg_ + 0.1 * (frame_ms_ - frame_ms_avg_);
     if (last_frame_moved_) moving_frame_ms_.push_back(frame_ms_);
     last_frame_moved_ = false;
@@ -396,7 +400,7 @@ int Viewer::run() {
       continue;
     }
     autosaveProject(false);
-    imgui_.beginFrame(size.width, size.height, frame_ms_ * 1e-3);
+    imgui_.beginFrame(size.width, size.height, clock_frame_ms_ * 1e-3);
     handleEvents(events);
     updateHover();
     drawPanels();
@@ -736,10 +740,10 @@ void Viewer::render(bool screenshot, const std::string& screenshot_name) {
   // A moving view trades resolution and points for frame rate (dynamic resolution): towards
   // kMovingFrameMs, never below a quarter of the still view's scale; a still view is drawn in
   // full. The point budget follows the pixels, so the points per pixel stay the same.
-  cloud_->navigator->update(frame_ms_ * 1e-3);
+  cloud_->navigator->update(clock_frame_ms_ * 1e-3);
   last_frame_moved_ = cloud_->navigator->takeChanged();
   if (last_frame_moved_ && adaptive_quality_) {
-    const double step = std::clamp(std::sqrt(kMovingFrameMs / std::max(frame_ms_, 1.0)), 0.8, 1.25);
+    const double step = std::clamp(std::sqrt(kMovingFrameMs / std::max(clock_frame_ms_, 1.0)), 0.8, 1.25);
     moving_scale_ = std::clamp(moving_scale_ * step, 0.25 * render_scale_, static_cast<double>(render_scale_));
   }
   const double scale = last_frame_moved_ && adaptive_quality_ ? moving_scale_ : render_scale_;

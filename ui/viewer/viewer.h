@@ -160,6 +160,7 @@ class Viewer {
   using Clock = std::chrono::steady_clock;
   Clock::time_point last_frame_ = Clock::now();
   double frame_ms_ = 0.0;      // the last frame, start to start
+  double clock_frame_ms_ = 0.0;  // what the last frame lasted for the viewer's behaviour (ScriptClock)
   double frame_ms_avg_ = 0.0;  // smoothed, for the palette
   std::uint64_t frames_ = 0;
   bool last_frame_moved_ = false;              // the camera changed in the frame just drawn

@@ -21,6 +21,9 @@ struct ViewerOptions {
   // cache directory). Its cloud and camera are used unless `cloud` and `camera` are given.
   std::string project;
   std::string script;                  // a session script (session_script.h); empty: interactive
+  // A script runs on its own clock, 30 frames a second whatever the machine's load, so that it
+  // replays the same; the wall clock instead measures what navigation costs (benchmarks).
+  bool script_wall_clock = false;
   std::string screenshot_dir;          // where the script's screenshots go
   std::string dump_scene;              // the scene as JSON when the viewer closes
   std::optional<view::Camera> camera;  // the first view; default: the demo's or an iso view of the cloud

@@ -132,6 +132,19 @@ TEST(Navigator, TwoSlowClicksAreTwoClicks) {
   EXPECT_TRUE(navigator.handle(button(320, 180, false), kNothing));
 }
 
+// A grow at the screen's centre, a new view centred on the next seed, a grow there: two quick
+// clicks at one pixel, but on two views, so two clicks for the tool (the second grow was lost to a
+// focus when the machine was fast enough to make them quick).
+TEST(Navigator, QuickClicksAtOnePixelOnTwoViewsAreTwoClicks) {
+  Navigator navigator(kMin, kMax, 640, 360);
+  navigator.handle(button(320, 180, true), kNothing);
+  EXPECT_TRUE(navigator.handle(button(320, 180, false), kNothing));
+  navigator.update(0.1);
+  navigator.showPreset(view::ViewPreset::kTop);
+  navigator.handle(button(320, 180, true), kNothing);
+  EXPECT_TRUE(navigator.handle(button(320, 180, false), kNothing)) << "a click on the new view, not a focus";
+}
+
 TEST(Navigator, KeysShowTheStandardViewsAndHome) {
   Navigator navigator(kMin, kMax, 640, 360);
   const view::Camera home = navigator.camera();

@@ -111,6 +111,17 @@ TEST(SessionScript, ThePlayerReplaysFramesAndWaitsForTheGrower) {
   EXPECT_TRUE(player.next(true, true).finished);
 }
 
+// On the script's clock a wait in milliseconds is a number of frames, however long they take:
+// 250 ms are eight frames of 33.3 ms.
+TEST(SessionScript, AWaitInMillisecondsCountsTheScriptsFrames) {
+  ScriptPlayer player(std::vector<ScriptStep>{
+      ScriptStep{.kind = ScriptStep::Kind::kWaitMs, .ms = 250.0},
+      ScriptStep{.kind = ScriptStep::Kind::kScreenshot, .name = "after.png"},
+  });
+  for (int frame = 0; frame < 8; ++frame) EXPECT_FALSE(player.next(true, true).screenshot) << "frame " << frame;
+  EXPECT_EQ(player.next(true, true).screenshot, "after.png");
+}
+
 TEST(SessionScript, AWaitThatTimesOutFailsTheSession) {
   ScriptPlayer player(std::vector<ScriptStep>{
       ScriptStep{.kind = ScriptStep::Kind::kWaitStreamingIdle, .timeout_s = 0.0},
