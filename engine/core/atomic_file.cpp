@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cassert>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -78,11 +79,33 @@ std::string makeTempPath(const std::string& path) {
 
 }  // namespace
 
+void removeAbandonedTemporaries(const std::string& target_path) {
+  namespace fs = std::filesystem;
+  const fs::path target(target_path);
+  const std::string prefix = target.filename().string() + ".partial-";
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code error;
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = name.substr(prefix.size());
+    const std::size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || rest.find_first_not_of("0123456789-") != std::string::npos) continue;
+    const long pid = std::strtol(rest.substr(0, dash).c_str(), nullptr, 10);
+    if (pid <= 0 || pid == ::getpid()) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), temp_path_(makeTempPath(path_)) {
   const std::filesystem::path target(path_);
   if (target.filename().empty()) throw fileError(path_, "is a directory name, not a file name");
   std::error_code error;
   if (std::filesystem::is_directory(target, error)) throw fileError(path_, "is a directory");
+  removeAbandonedTemporaries(path_);
 
   cleanup_slot_ = registerForCleanup(temp_path_);
   fd_ = ::open(temp_path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);

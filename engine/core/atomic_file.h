@@ -4,7 +4,8 @@
 // Writes go to a temporary file beside the target ("<path>.partial-<pid>-<n>"); finish() flushes
 // and fsyncs it, commit() renames it over the target and fsyncs the directory. An AtomicFile
 // destroyed before commit(), or a process stopped by SIGINT, SIGTERM or SIGHUP, removes the
-// temporary file, so an interrupted or failed command leaves no partial output behind.
+// temporary file, so an interrupted or failed command leaves no partial output behind. What a
+// process stopped by SIGKILL leaves goes when the next AtomicFile of the same path is made.
 // Commands with several outputs finish() all of them before they commit() any.
 //
 // Not thread-safe: one thread writes one AtomicFile.
@@ -16,6 +17,11 @@
 #include <vector>
 
 namespace plumb {
+
+// Removes the temporary files of `target` that a process stopped by SIGKILL (or a power cut)
+// left behind: "<target>.partial-<pid>-<n>" whose process no longer runs. A process still running
+// (this one, or one of another user: kill answers EPERM) keeps its file. Never throws.
+void removeAbandonedTemporaries(const std::string& target);
 
 class AtomicFile {
  public:

@@ -53,6 +53,11 @@ Command addViewCommand(CLI::App& plumb) {
                   "it); by default each click measures the noise")
       ->check(CLI::Range(0.0005, 1.0))
       ->each([options](const std::string&) { options->plane_threshold_from_data = false; });
+  sub->add_option("--autosave-s", options->autosave_s,
+                  "Unsaved changes go to <project>.autosave at most this often (and when the viewer closes); "
+                  "a session stopped by anything loses at most this much work")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   sub->add_flag("!--fixed-quality", options->adaptive_quality,
                 "Render a moving view as a still one (by default it drops resolution and points to keep 30 fps)");

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "cad/project_file.h"
+#include "engine/core/atomic_file.h"
 #include "ui/viewer/demo_scan.h"
 
 namespace plumb::viewer {
@@ -38,12 +39,13 @@ void ProjectSession::save(const cad::Project& project, std::uint64_t version) {
   cad::writeProjectFile(project, path_);
   std::error_code ignored;
   std::filesystem::remove(autosavePath(), ignored);
+  removeAbandonedTemporaries(autosavePath());  // of autosaves a killed session did not finish
   recovered_ = false;
   markSaved(version);
 }
 
 bool ProjectSession::autosaveDue(std::uint64_t version, Clock::time_point now) const {
-  return version != saved_version_ && version != autosaved_version_ && now - last_autosave_ >= kAutosaveInterval;
+  return version != saved_version_ && version != autosaved_version_ && now - last_autosave_ >= autosave_interval_;
 }
 
 void ProjectSession::autosave(const cad::Project& project, std::uint64_t version, Clock::time_point now) {

@@ -6,7 +6,9 @@
 //   open      the project file, or its autosave when that is newer (the work of a session that
 //             stopped unsaved), or nothing (a new project, saved there on the first save)
 //   save      the project file, atomically; the autosave goes
-//   autosave  at most every kAutosaveInterval while there are unsaved changes, and on exit
+//   autosave  at most every autosave interval (30 s unless set) while there are unsaved changes,
+//             and on exit: a session stopped by anything, SIGKILL included, loses at most the
+//             edits of the last interval (both files are written atomically, core/atomic_file.h)
 //
 // The project file itself is written only by save: a corrupt or newer file is never overwritten
 // by an autosave, and opening one fails before any window opens.
@@ -24,7 +26,7 @@ namespace plumb::viewer {
 class ProjectSession {
  public:
   using Clock = std::chrono::steady_clock;
-  static constexpr std::chrono::seconds kAutosaveInterval{30};
+  static constexpr std::chrono::milliseconds kDefaultAutosaveInterval{30'000};
 
   // The session of `path`; an empty path gives the default: "<cloud>.plumbproj" beside the
   // cloud, or the cache directory's "demo.plumbproj" for the demo (empty `cloud`). Reads the
@@ -45,7 +47,8 @@ class ProjectSession {
 
   // Writes the project file and removes the autosave. Throws plumb::Error (the file as it was).
   void save(const cad::Project& project, std::uint64_t version);
-  // True when changes wait that the autosave lacks, and the last autosave is kAutosaveInterval old.
+  void setAutosaveInterval(std::chrono::milliseconds interval) { autosave_interval_ = interval; }
+  // True when changes wait that the autosave lacks, and the last autosave is an interval old.
   bool autosaveDue(std::uint64_t version, Clock::time_point now) const;
   // Writes the autosave. Throws plumb::Error.
   void autosave(const cad::Project& project, std::uint64_t version, Clock::time_point now);
@@ -57,6 +60,7 @@ class ProjectSession {
   std::uint64_t saved_version_ = 0;
   std::uint64_t autosaved_version_ = 0;
   Clock::time_point last_autosave_ = Clock::now();
+  std::chrono::milliseconds autosave_interval_ = kDefaultAutosaveInterval;
 };
 
 }  // namespace plumb::viewer

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <unordered_map>
 
 #include "reco/edges_and_corners.h"
 #include "ui/viewer/grow_session.h"
@@ -337,12 +338,15 @@ std::variant<ecs::Entity, std::string> SceneState::addCornerOfSelected() {
   if (segments.size() != 3) {
     return "select three segments (" + std::to_string(segments.size()) + " selected)";
   }
-  std::sort(segments.begin(), segments.end(), [](ecs::Entity a, ecs::Entity b) { return a.id() < b.id(); });
+  // The corner keeps its segments in the order they were selected; entity ids are no order to
+  // keep (how many live grow snapshots came and went decides them, and that follows the load).
+  std::vector<ecs::Entity> wanted = segments;
+  std::sort(wanted.begin(), wanted.end());
   bool exists = false;
   registry_.view<Corner>().each([&](ecs::Entity, const Corner& corner) {
     std::array<ecs::Entity, 3> of = corner.segments;
-    std::sort(of.begin(), of.end(), [](ecs::Entity a, ecs::Entity b) { return a.id() < b.id(); });
-    exists = exists || (of[0] == segments[0] && of[1] == segments[1] && of[2] == segments[2]);
+    std::sort(of.begin(), of.end());
+    exists = exists || std::equal(of.begin(), of.end(), wanted.begin());
   });
   if (exists) return std::string("these three segments have their corner already");
   const reco::Plane& a = registry_.get<Segment>(segments[0]).plane;
@@ -435,9 +439,23 @@ void SceneState::setNameCounters(std::uint64_t segments, std::uint64_t polygons,
 }
 
 std::string SceneState::toJson() const {
+  // Items are numbered in the dump from 1, segments first, then edges, corners, polygons and
+  // groups, each in the scene's order: entity ids would not do, as live grow snapshots consume
+  // them in numbers that follow the machine's speed, and a replay must dump the same scene.
+  std::unordered_map<ecs::Entity, std::uint64_t> numbers;
+  const auto number = [&](ecs::Entity entity) { numbers.emplace(entity, numbers.size() + 1); };
+  registry_.view<Segment>().each([&](ecs::Entity entity, const Segment&) { number(entity); });
+  registry_.view<Edge>().each([&](ecs::Entity entity, const Edge&) { number(entity); });
+  registry_.view<Corner>().each([&](ecs::Entity entity, const Corner&) { number(entity); });
+  registry_.view<Polygon>().each([&](ecs::Entity entity, const Polygon&) { number(entity); });
+  registry_.view<Group>().each([&](ecs::Entity entity, const Group&) { number(entity); });
+  const auto id = [&](ecs::Entity entity) -> nlohmann::json {
+    const auto it = numbers.find(entity);
+    return it != numbers.end() ? nlohmann::json(it->second) : nlohmann::json(nullptr);
+  };
   nlohmann::json segments = nlohmann::json::array();
   registry_.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
-    segments.push_back({{"id", entity.id()},
+    segments.push_back({{"id", id(entity)},
                         {"name", segment.name},
                         {"grow", segment.grow},
                         {"growing", segment.growing},
@@ -452,32 +470,32 @@ std::string SceneState::toJson() const {
   });
   nlohmann::json edges = nlohmann::json::array();
   registry_.view<Edge>().each([&](ecs::Entity entity, const Edge& edge) {
-    edges.push_back({{"id", entity.id()},
-                     {"segments", {edge.segments[0].id(), edge.segments[1].id()}},
+    edges.push_back({{"id", id(entity)},
+                     {"segments", {id(edge.segments[0]), id(edge.segments[1])}},
                      {"start", vector3(edge.start)},
                      {"end", vector3(edge.end)},
                      {"support_points", edge.support_points}});
   });
   nlohmann::json corners = nlohmann::json::array();
   registry_.view<Corner>().each([&](ecs::Entity entity, const Corner& corner) {
-    corners.push_back({{"id", entity.id()},
-                       {"segments", {corner.segments[0].id(), corner.segments[1].id(), corner.segments[2].id()}},
+    corners.push_back({{"id", id(entity)},
+                       {"segments", {id(corner.segments[0]), id(corner.segments[1]), id(corner.segments[2])}},
                        {"name", corner.name},
                        {"position", vector3(corner.position)},
                        {"support", corner.support}});
   });
   const auto group_of = [&](ecs::Entity entity) -> nlohmann::json {
     const InGroup* in = registry_.tryGet<InGroup>(entity);
-    return in ? nlohmann::json(in->group.id()) : nlohmann::json(nullptr);
+    return in ? id(in->group) : nlohmann::json(nullptr);
   };
   nlohmann::json polygons = nlohmann::json::array();
   registry_.view<Polygon>().each([&](ecs::Entity entity, const Polygon& polygon) {
     nlohmann::json vertices = nlohmann::json::array();
     for (const Eigen::Vector3d& vertex : polygon.vertices) vertices.push_back(vector3(vertex));
     polygons.push_back(
-        {{"id", entity.id()},
+        {{"id", id(entity)},
          {"name", polygon.name},
-         {"plane", polygon.plane == ecs::kNullEntity ? nlohmann::json(nullptr) : nlohmann::json(polygon.plane.id())},
+         {"plane", id(polygon.plane)},
          {"vertices", vertices},
          {"extrusion", vector3(polygon.extrusion)},
          {"group", group_of(entity)}});
@@ -486,9 +504,9 @@ std::string SceneState::toJson() const {
   registry_.view<Group>().each([&](ecs::Entity entity, const Group& group) {
     nlohmann::json members = nlohmann::json::array();
     registry_.view<InGroup>().each([&](ecs::Entity member, const InGroup& in) {
-      if (in.group == entity) members.push_back(member.id());
+      if (in.group == entity) members.push_back(id(member));
     });
-    groups.push_back({{"id", entity.id()}, {"name", group.name}, {"members", members}});
+    groups.push_back({{"id", id(entity)}, {"name", group.name}, {"members", members}});
   });
   const ToolState& tool = registry_.get<ToolState>(tool_);
   nlohmann::json measure = nullptr;

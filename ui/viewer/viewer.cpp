@@ -27,6 +27,12 @@
 namespace plumb::viewer {
 namespace {
 
+// What a saved project holds, for the messages of saves and autosaves.
+std::string projectContents(const cad::Project& project) {
+  return std::to_string(project.segments.size()) + " segments, " + std::to_string(project.polygons.size()) +
+         " polygons";
+}
+
 bool isDrawingTool(Tool tool) {
   return tool == Tool::kPolygon || tool == Tool::kMove || tool == Tool::kExtrude;
 }
@@ -79,6 +85,7 @@ Viewer::Viewer(const ViewerOptions& options)
   grow_panel_.plane_threshold_m = static_cast<float>(options.plane_threshold_m);
   grow_panel_.threshold_from_data = options.plane_threshold_from_data;
   jobs_.setWakeUp([] { Window::wakeUp(); });
+  project_.setAutosaveInterval(std::chrono::milliseconds(std::lround(options.autosave_s * 1e3)));
   if (!options.script.empty()) {
     script_.emplace(readSessionScript(options.script),
                     options.script_wall_clock ? ScriptClock::kWall : ScriptClock::kScript);
@@ -140,23 +147,28 @@ cad::Project Viewer::currentProject() const {
 
 void Viewer::saveProject() {
   try {
-    project_.save(currentProject(), documentVersion(scene_.registry()));
-    project_message_ = "saved " + project_.path();
+    const cad::Project project = currentProject();
+    project_.save(project, documentVersion(scene_.registry()));
+    project_message_ = "saved " + project_.path() + " (" + projectContents(project) + ")";
   } catch (const std::exception& error) {
     project_message_ = error.what();
   }
   std::printf("plumb view: %s\n", project_message_.c_str());
+  std::fflush(stdout);  // the line tells what is safe on disk, even to the log of a killed session
 }
 
-// Unsaved changes go to the autosave every ProjectSession::kAutosaveInterval, and when the
-// viewer closes (`now`).
+// Unsaved changes go to the autosave every autosave interval (--autosave-s), and when the viewer
+// closes (`now`).
 void Viewer::autosaveProject(bool now) {
   const std::uint64_t version = documentVersion(scene_.registry());
   const Clock::time_point time = Clock::now();
   if (!(now ? project_.unsaved(version) : project_.autosaveDue(version, time))) return;
   try {
-    project_.autosave(currentProject(), version, time);
-    if (now) std::printf("plumb view: unsaved changes kept in %s\n", project_.autosavePath().c_str());
+    const cad::Project project = currentProject();
+    project_.autosave(project, version, time);
+    std::printf("plumb view: %s %s (%s)\n", now ? "unsaved changes kept in" : "autosaved",
+                project_.autosavePath().c_str(), projectContents(project).c_str());
+    std::fflush(stdout);
   } catch (const std::exception& error) {
     project_message_ = std::string("autosave failed: ") + error.what();
     std::fprintf(stderr, "plumb view: %s\n", project_message_.c_str());

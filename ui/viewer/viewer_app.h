@@ -28,6 +28,7 @@ struct ViewerOptions {
   std::string dump_scene;              // the scene as JSON when the viewer closes
   std::optional<view::Camera> camera;  // the first view; default: the demo's or an iso view of the cloud
   int width = 1280, height = 720;
+  double autosave_s = 30.0;               // unsaved changes go to "<project>.autosave" at most this often
   double plane_threshold_m = 0.02;        // the Grow tool's t_p to begin with (its panel changes it)
   bool plane_threshold_from_data = true;  // t_p from the noise of each click's seed planes
   std::string gpu;                        // DeviceChoice::prefer; empty: PLUMB_GPU or automatic

@@ -110,5 +110,35 @@ TEST_F(AtomicFileTest, TerminatedProcessLeavesNoTemporary) {
   EXPECT_EQ(entries(), 0u);
 }
 
+// SIGKILL cannot be caught: the temporary stays until the next AtomicFile of that path, which
+// removes it; a temporary of a process that still runs (this one's, another target's) stays.
+TEST_F(AtomicFileTest, AKilledProcessTemporaryGoesWithTheNextWriteOfThatPath) {
+  const fs::path target = directory_ / "out.bin";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    AtomicFile file(target.string());
+    file.write("killed", 6);
+    file.finish();
+    std::raise(SIGKILL);
+    _exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  ASSERT_EQ(entries(), 1u) << "the killed process's temporary";
+  const fs::path running = directory_ / ("out.bin.partial-" + std::to_string(::getppid()) + "-0");
+  std::ofstream(running) << "a running process's";
+  const fs::path other = directory_ / ("other.bin.partial-" + std::to_string(child) + "-0");
+  std::ofstream(other) << "another target's";
+
+  AtomicFile file(target.string());
+  file.write("next", 4);
+  file.commit();
+  EXPECT_EQ(entries(), 3u) << "the output, the running process's and the other target's temporaries";
+  EXPECT_TRUE(fs::exists(running));
+  EXPECT_TRUE(fs::exists(other));
+}
+
 }  // namespace
 }  // namespace plumb
