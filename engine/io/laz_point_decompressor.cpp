@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <utility>
 
 #include "engine/io/byte_order.h"
 
@@ -21,6 +22,37 @@ LazPointDecompressor::LazPointDecompressor(FileSource& source, const LaszipVlr& 
       point_count_(point_count),
       layered_(vlr.compressor == LazCompressor::kLayeredChunked) {
   assert((vlr.compressor == LazCompressor::kPointwise || chunked_) && "readLaszipVlr refuses compressor 0 here");
+  makeItems(vlr);
+  if (chunked_) {
+    table_ = readLazChunkTable(source_, point_offset_, chunk_size_, record_length_, point_count_);
+  } else {
+    table_.chunks_start = point_offset_;
+  }
+}
+
+LazPointDecompressor::LazPointDecompressor(FileSource& source, const LaszipVlr& vlr, LazChunkTable table,
+                                           std::size_t record_length)
+    : source_(source),
+      input_(source),
+      decoder_(input_),
+      chunked_(true),
+      chunk_size_(vlr.chunk_size),
+      point_offset_(table.chunks_start),
+      data_end_(source.size()),
+      record_length_(record_length),
+      point_count_(0),
+      layered_(vlr.compressor == LazCompressor::kLayeredChunked),
+      table_(std::move(table)) {
+  assert((vlr.compressor == LazCompressor::kPointwiseChunked || layered_) && "chunks are read from chunked LAZ only");
+  assert(table_.present && "pass the chunks to decode");
+  makeItems(vlr);
+  for (const LazChunk& chunk : table_.chunks) {
+    assert(chunk.points > 0 && chunk.offset + chunk.bytes <= source.size() && "chunks lie inside the file");
+    point_count_ += chunk.points;
+  }
+}
+
+void LazPointDecompressor::makeItems(const LaszipVlr& vlr) {
   std::size_t offset = 0;
   for (const LazItem& item : vlr.items) {
     if (layered_) {
@@ -39,12 +71,7 @@ LazPointDecompressor::LazPointDecompressor(FileSource& source, const LaszipVlr& 
     offset += item.size;
   }
   first_layer_.push_back(layers_.size());
-  assert(offset == record_length && "readLaszipVlr checks that the items make the record");
-  if (chunked_) {
-    table_ = readLazChunkTable(source_, point_offset_, chunk_size_, record_length_, point_count_);
-  } else {
-    table_.chunks_start = point_offset_;
-  }
+  assert(offset == record_length_ && "readLaszipVlr checks that the items make the record");
 }
 
 void LazPointDecompressor::startChunk(std::byte* record) {

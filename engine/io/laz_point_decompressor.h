@@ -41,6 +41,11 @@ class LazPointDecompressor {
   LazPointDecompressor(FileSource& source, const LaszipVlr& vlr, std::uint64_t point_offset, std::uint64_t data_end,
                        std::size_t record_length, std::uint64_t point_count);
 
+  // Decodes only the chunks of `table` (present, its chunks in any order, none empty), for a
+  // reader that finds chunks itself: a COPC node is one chunk, located by the octree's hierarchy
+  // rather than by the chunk table. `vlr`: checked by readLaszipVlr, compressor 2 or 3.
+  LazPointDecompressor(FileSource& source, const LaszipVlr& vlr, LazChunkTable table, std::size_t record_length);
+
   // Decodes the next records.size() / record_length records (no more than remain) into
   // `records`. Throws plumb::Error on truncated or corrupt compressed data.
   void decode(std::span<std::byte> records);
@@ -48,6 +53,7 @@ class LazPointDecompressor {
   std::uint64_t decoded() const { return decoded_; }
 
  private:
+  void makeItems(const LaszipVlr& vlr);
   void startChunk(std::byte* record);
   void startLayers(std::uint64_t chunk_end);
 

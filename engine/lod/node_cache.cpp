@@ -67,6 +67,7 @@ std::shared_ptr<NodeCache::Entry> NodeCache::acquire(const NodeInfo& node, bool&
   entry->recency = recency_.begin();
   entries_.emplace(node.key, entry);
   ++stats_.misses;
+  stats_.bytes_read += node.bytes;
   must_load = true;
   return entry;
 }

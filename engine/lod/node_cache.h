@@ -18,7 +18,8 @@ namespace plumb::lod {
 
 struct NodeCacheStats {
   std::uint64_t hits = 0;
-  std::uint64_t misses = 0;  // loads started
+  std::uint64_t misses = 0;      // loads started
+  std::uint64_t bytes_read = 0;  // of the files, by those loads (NodeInfo::bytes)
   std::uint64_t evictions = 0;
   std::uint64_t bytes = 0;  // held by the cache now
   std::uint64_t nodes = 0;

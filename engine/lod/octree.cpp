@@ -1,94 +1,36 @@
 #include "engine/lod/octree.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <fstream>
+#include <utility>
 
-#include "engine/core/error.h"
+#include "engine/io/copc_file.h"
+#include "engine/lod/copc_storage.h"
+#include "engine/lod/plumb_storage.h"
 
 namespace plumb::lod {
-namespace {
-
-void readAt(int fd, const std::string& path, std::uint64_t offset, std::span<std::byte> out) {
-  std::size_t done = 0;
-  while (done < out.size()) {
-    const ssize_t got = ::pread(fd, out.data() + done, out.size() - done, static_cast<off_t>(offset + done));
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) throw fileErrorAt(path, offset + done, "read failed (" + systemErrorText(errno) + ")");
-    if (got == 0) throw fileErrorAt(path, offset + done, "truncated: the file ends early");
-    done += static_cast<std::size_t>(got);
-  }
-}
-
-}  // namespace
 
 bool Octree::looksLikeOctree(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::array<char, kOctreeMagic.size()> magic{};
   in.read(magic.data(), magic.size());
-  return in.gcount() == static_cast<std::streamsize>(magic.size()) && magic == kOctreeMagic;
+  if (in.gcount() == static_cast<std::streamsize>(magic.size()) && magic == kOctreeMagic) return true;
+  return io::CopcFile::looksLikeCopc(path);
 }
 
 std::shared_ptr<const Octree> Octree::open(const std::string& path) {
+  OpenedOctree opened = io::CopcFile::looksLikeCopc(path) ? openCopcOctree(path) : openPlumbOctree(path);
   std::shared_ptr<Octree> tree(new Octree());
   tree->path_ = path;
-  tree->fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (tree->fd_ < 0) throw fileError(path, "cannot open (" + systemErrorText(errno) + ")");
-  struct stat status {};
-  if (::fstat(tree->fd_, &status) != 0 || !S_ISREG(status.st_mode)) throw fileError(path, "is not a regular file");
-  const auto file_size = static_cast<std::uint64_t>(status.st_size);
-  // The magic first: a short file that is not an octree should say so, not "truncated".
-  std::array<std::byte, kHeaderBytes> header_bytes{};
-  readAt(tree->fd_, path, 0, std::span(header_bytes).first(std::min<std::uint64_t>(file_size, kHeaderBytes)));
-  if (file_size < kOctreeMagic.size() ||
-      std::memcmp(header_bytes.data(), kOctreeMagic.data(), kOctreeMagic.size()) != 0) {
-    throw fileErrorAt(path, 0, "not a Plumb octree (build one with 'plumb import')");
-  }
-  if (file_size < kHeaderBytes) throw fileErrorAt(path, file_size, "truncated: shorter than an octree header");
-  OctreeHeader& h = tree->header_ = decodeHeader(header_bytes, path);
-
-  if (h.index_bytes != h.node_count * kIndexEntryBytes || h.index_offset < kHeaderBytes || h.index_offset > file_size ||
-      h.index_bytes > file_size - h.index_offset) {
-    throw fileErrorAt(path, h.index_offset, "truncated or corrupt: the node index lies outside the file");
-  }
-  if (!(h.cube.size > 0.0) || !std::isfinite(h.cube.size) || !(h.root_spacing > 0.0)) {
-    throw fileErrorAt(path, 32, "corrupt header: bad cube or spacing");
-  }
-  std::vector<std::byte> index(h.index_bytes);
-  readAt(tree->fd_, path, h.index_offset, index);
-  if (crc32Of(index) != h.index_crc) {
-    throw fileErrorAt(path, h.index_offset, "the node index is corrupt (checksum mismatch); rebuild the octree");
-  }
-  tree->nodes_.reserve(h.node_count);
-  std::uint64_t points = 0;
-  for (std::uint64_t i = 0; i < h.node_count; ++i) {
-    const NodeInfo node = decodeIndexEntry(index.data() + i * kIndexEntryBytes);
-    const std::uint64_t block = std::uint64_t{node.point_count} * kPointBytes;
-    if (!node.key.valid() || node.offset < kHeaderBytes || node.offset > h.index_offset ||
-        block > h.index_offset - node.offset) {
-      throw fileErrorAt(path, h.index_offset + i * kIndexEntryBytes, "corrupt node index entry");
-    }
-    points += node.point_count;
-    tree->lookup_.emplace(node.key, tree->nodes_.size());
-    tree->nodes_.push_back(node);
-  }
-  if (points != h.point_count) {
-    throw fileErrorAt(
-        path, h.index_offset,
-        "the node index holds " + std::to_string(points) + " points, the header says " + std::to_string(h.point_count));
-  }
+  tree->storage_ = std::move(opened.storage);
+  tree->header_ = opened.header;
+  tree->nodes_ = std::move(opened.nodes);
+  tree->lookup_.reserve(tree->nodes_.size());
+  for (std::size_t i = 0; i < tree->nodes_.size(); ++i) tree->lookup_.emplace(tree->nodes_[i].key, i);
   return tree;
 }
 
-Octree::~Octree() {
-  if (fd_ >= 0) ::close(fd_);
-}
+Octree::~Octree() = default;
 
 const NodeInfo* Octree::find(const CellKey& key) const {
   const auto it = lookup_.find(key);
@@ -103,21 +45,6 @@ std::uint32_t Octree::levelForSpacing(double wanted) const {
   std::uint32_t level = 0;
   while (level < header_.depth && spacing(level) > wanted) ++level;
   return level;
-}
-
-NodePoints Octree::load(const NodeInfo& node) const {
-  std::vector<std::byte> block(std::size_t{node.point_count} * kPointBytes);
-  readAt(fd_, path_, node.offset, block);
-  if (crc32Of(block) != node.crc) {
-    throw fileErrorAt(path_, node.offset,
-                      "node (level " + std::to_string(node.key.level) + ", " + std::to_string(node.key.x) + ", " +
-                          std::to_string(node.key.y) + ", " + std::to_string(node.key.z) +
-                          ") is corrupt (checksum mismatch); rebuild the octree with 'plumb import'");
-  }
-  NodePoints result{node.key, cube().cellMin(node.key), {}};
-  result.points.resize(node.point_count);
-  for (std::size_t i = 0; i < node.point_count; ++i) result.points[i] = decodePoint(block.data() + i * kPointBytes);
-  return result;
 }
 
 }  // namespace plumb::lod

@@ -145,6 +145,7 @@ NodeInfo decodeIndexEntry(const std::byte* in) {
   node.crc = r.get<std::uint32_t>();
   node.offset = r.get<std::uint64_t>();
   node.child_mask = r.get<std::uint8_t>();
+  node.bytes = std::uint64_t{node.point_count} * kPointBytes;
   return node;
 }
 

@@ -49,9 +49,10 @@ struct OctreeHeader {
 struct NodeInfo {
   CellKey key;
   std::uint32_t point_count = 0;
-  std::uint32_t crc = 0;        // of the node block
-  std::uint64_t offset = 0;     // of the node block in the file
+  std::uint32_t crc = 0;        // of the node block (Plumb's file; 0 in a COPC file, whose chunks have none)
+  std::uint64_t offset = 0;     // of the node block in the file (COPC: of the node's LAZ chunk)
   std::uint8_t child_mask = 0;  // bit i: child octant i exists
+  std::uint64_t bytes = 0;      // of the node block, what loading it reads (Plumb: implied, not in the index)
 };
 
 // One stored point: position relative to its cell's minimum corner, colour and intensity.

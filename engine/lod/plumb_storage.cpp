@@ -1,0 +1,119 @@
+#include "engine/lod/plumb_storage.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <span>
+#include <utility>
+
+#include "engine/core/error.h"
+
+namespace plumb::lod {
+namespace {
+
+void readAt(int fd, const std::string& path, std::uint64_t offset, std::span<std::byte> out) {
+  std::size_t done = 0;
+  while (done < out.size()) {
+    const ssize_t got = ::pread(fd, out.data() + done, out.size() - done, static_cast<off_t>(offset + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) throw fileErrorAt(path, offset + done, "read failed (" + systemErrorText(errno) + ")");
+    if (got == 0) throw fileErrorAt(path, offset + done, "truncated: the file ends early");
+    done += static_cast<std::size_t>(got);
+  }
+}
+
+class PlumbStorage final : public OctreeStorage {
+ public:
+  PlumbStorage(std::string path, const Cube& cube) : path_(std::move(path)), cube_(cube) {
+    fd_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) throw fileError(path_, "cannot open (" + systemErrorText(errno) + ")");
+  }
+  ~PlumbStorage() override { ::close(fd_); }
+  PlumbStorage(const PlumbStorage&) = delete;
+  PlumbStorage& operator=(const PlumbStorage&) = delete;
+
+  int fd() const { return fd_; }
+  // The cube is known once the header has been read, through this storage's descriptor.
+  void setCube(const Cube& cube) { cube_ = cube; }
+
+  NodePoints load(const NodeInfo& node) const override {
+    std::vector<std::byte> block(std::size_t{node.point_count} * kPointBytes);
+    readAt(fd_, path_, node.offset, block);
+    if (crc32Of(block) != node.crc) {
+      throw fileErrorAt(path_, node.offset,
+                        "node (level " + std::to_string(node.key.level) + ", " + std::to_string(node.key.x) + ", " +
+                            std::to_string(node.key.y) + ", " + std::to_string(node.key.z) +
+                            ") is corrupt (checksum mismatch); rebuild the octree with 'plumb import'");
+    }
+    NodePoints result{node.key, cube_.cellMin(node.key), {}};
+    result.points.resize(node.point_count);
+    for (std::size_t i = 0; i < node.point_count; ++i) result.points[i] = decodePoint(block.data() + i * kPointBytes);
+    return result;
+  }
+
+  std::string format() const override { return "Plumb octree " + std::to_string(kOctreeVersion); }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  Cube cube_;
+};
+
+}  // namespace
+
+OpenedOctree openPlumbOctree(const std::string& path) {
+  auto storage = std::make_unique<PlumbStorage>(path, Cube{});
+  const int fd = storage->fd();
+  struct stat status {};
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) throw fileError(path, "is not a regular file");
+  const auto file_size = static_cast<std::uint64_t>(status.st_size);
+  // The magic first: a short file that is not an octree should say so, not "truncated".
+  std::array<std::byte, kHeaderBytes> header_bytes{};
+  readAt(fd, path, 0, std::span(header_bytes).first(std::min<std::uint64_t>(file_size, kHeaderBytes)));
+  if (file_size < kOctreeMagic.size() ||
+      std::memcmp(header_bytes.data(), kOctreeMagic.data(), kOctreeMagic.size()) != 0) {
+    throw fileErrorAt(path, 0, "not a Plumb octree or a COPC file (build an octree with 'plumb import')");
+  }
+  if (file_size < kHeaderBytes) throw fileErrorAt(path, file_size, "truncated: shorter than an octree header");
+  OpenedOctree opened;
+  OctreeHeader& h = opened.header = decodeHeader(header_bytes, path);
+
+  if (h.index_bytes != h.node_count * kIndexEntryBytes || h.index_offset < kHeaderBytes || h.index_offset > file_size ||
+      h.index_bytes > file_size - h.index_offset) {
+    throw fileErrorAt(path, h.index_offset, "truncated or corrupt: the node index lies outside the file");
+  }
+  if (!(h.cube.size > 0.0) || !std::isfinite(h.cube.size) || !(h.root_spacing > 0.0)) {
+    throw fileErrorAt(path, 32, "corrupt header: bad cube or spacing");
+  }
+  std::vector<std::byte> index(h.index_bytes);
+  readAt(fd, path, h.index_offset, index);
+  if (crc32Of(index) != h.index_crc) {
+    throw fileErrorAt(path, h.index_offset, "the node index is corrupt (checksum mismatch); rebuild the octree");
+  }
+  opened.nodes.reserve(h.node_count);
+  std::uint64_t points = 0;
+  for (std::uint64_t i = 0; i < h.node_count; ++i) {
+    const NodeInfo node = decodeIndexEntry(index.data() + i * kIndexEntryBytes);
+    if (!node.key.valid() || node.offset < kHeaderBytes || node.offset > h.index_offset ||
+        node.bytes > h.index_offset - node.offset) {
+      throw fileErrorAt(path, h.index_offset + i * kIndexEntryBytes, "corrupt node index entry");
+    }
+    points += node.point_count;
+    opened.nodes.push_back(node);
+  }
+  if (points != h.point_count) {
+    throw fileErrorAt(
+        path, h.index_offset,
+        "the node index holds " + std::to_string(points) + " points, the header says " + std::to_string(h.point_count));
+  }
+  storage->setCube(h.cube);
+  opened.storage = std::move(storage);
+  return opened;
+}
+
+}  // namespace plumb::lod
