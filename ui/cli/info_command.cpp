@@ -1,4 +1,4 @@
-// plumb info: what an octree holds, and whether it is intact.
+// plumb info: what an octree (Plumb's, or a COPC file read in place) holds, and whether it is intact.
 
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
@@ -17,13 +17,16 @@ Command addInfoCommand(CLI::App& plumb) {
   auto path = std::make_shared<std::string>();
   auto verify = std::make_shared<bool>(false);
   CLI::App* sub = plumb.add_subcommand("info", "Describe an octree: points, bounds, levels, nodes, spacing");
-  sub->add_option("octree", *path, "An octree built by 'plumb import'")->required()->check(CLI::ExistingFile);
-  sub->add_flag("--verify", *verify, "Read every node and check its checksum");
+  sub->add_option("octree", *path, "An octree built by 'plumb import', or a COPC file (.copc.laz)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_flag("--verify", *verify, "Read every node and check it (checksums; COPC: every chunk decodes)");
 
   auto run = [path, verify]() -> int {
     const auto octree = lod::Octree::open(*path);
     const lod::OctreeHeader& h = octree->header();
     std::printf("%s\n", path->c_str());
+    std::printf("  format      %s\n", octree->format().c_str());
     std::printf("  points      %s", withThousands(h.point_count).c_str());
     if (h.skipped_non_finite > 0) {
       std::printf(" (%s input points skipped: no valid position)",
@@ -52,8 +55,8 @@ Command addInfoCommand(CLI::App& plumb) {
                   withThousands(counts.second).c_str());
     }
     if (*verify) {
-      for (const lod::NodeInfo& node : octree->nodes()) octree->load(node);  // throws on a bad checksum
-      std::printf("  verified    every node's checksum\n");
+      for (const lod::NodeInfo& node : octree->nodes()) octree->load(node);  // throws on a bad node
+      std::printf("  verified    every node's data\n");
     }
     return 0;
   };
