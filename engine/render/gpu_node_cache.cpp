@@ -29,7 +29,7 @@ const GpuNode* GpuNodeCache::use(const lod::CellKey& key, std::uint64_t frame) {
 
 const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, VkCommandBuffer commands, gpu::UploadRing& ring,
                                     std::uint64_t frame) {
-  if (points.points.empty()) return nullptr;  // the octree writes no empty nodes
+  if (points.points.empty()) return nullptr;  // the renderer skips empty nodes (COPC has some)
   const VkDeviceSize bytes = points.points.size() * sizeof(lod::PackedPoint);
   const std::optional<gpu::UploadSpan> span = ring.allocate(bytes);
   if (!span) return nullptr;

@@ -309,6 +309,9 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   drawn.reserve(selection.nodes.size());
   for (std::size_t n = 0; n < selection.nodes.size(); ++n) {
     const lod::NodeInfo* info = selection.nodes[n];
+    // A node without points (a COPC inner node whose children hold them all) is selected so
+    // that its children are, and has nothing to draw.
+    if (info->point_count == 0) continue;
     const GpuNode* node = r.gpu_nodes.use(info->key, value);
     if (node == nullptr) {
       const std::shared_ptr<const lod::NodePoints> points =

@@ -1,8 +1,10 @@
 // A COPC file opened in place and grown on (docs/benchmarks.md). Prints, asserts nothing.
 //
-//   plumb_bench_copc [FILE] [--seed X,Y,Z] [--view-distance M]
+//   plumb_bench_copc [FILE] [--seed X,Y,Z] [--view-distance M] [--mosaic K DIR]
 //
-// FILE defaults to ../shared/data/formats/copc/lone-star.copc.laz. Prints the time to open the
+// FILE defaults to ../shared/data/formats/copc/lone-star.copc.laz. --mosaic writes 2^K x 2^K
+// copies of FILE side by side into DIR (tests/support/copc_mosaic.h) and measures that instead:
+// the reference files hold at most 15 nodes, too few to show what a click leaves unread. Prints the time to open the
 // file as an octree (the LAS header, the info VLR and every hierarchy page; best of 5), the
 // nodes and points it holds, then one click as `plumb grow` makes it (the data's spacing at the
 // click, then the grow, from an empty node cache): the nodes and the bytes it loaded against the
@@ -25,6 +27,7 @@
 #include "reco/data_at_click.h"
 #include "reco/parameters.h"
 #include "reco/region_grower.h"
+#include "tests/support/copc_mosaic.h"
 
 namespace {
 
@@ -64,6 +67,8 @@ int main(int argc, char** argv) {
       (std::filesystem::path(PLUMB_SOURCE_DIR).parent_path() / "shared/data/formats/copc/lone-star.copc.laz").string();
   std::optional<Eigen::Vector3d> seed;
   double view_distance = 30.0;
+  int mosaic_levels = 0;
+  std::string mosaic_directory;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
       Eigen::Vector3d s;
@@ -74,9 +79,22 @@ int main(int argc, char** argv) {
       seed = s;
     } else if (std::strcmp(argv[i], "--view-distance") == 0 && i + 1 < argc) {
       view_distance = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--mosaic") == 0 && i + 2 < argc) {
+      mosaic_levels = std::atoi(argv[++i]);
+      mosaic_directory = argv[++i];
     } else {
       path = argv[i];
     }
+  }
+
+  if (mosaic_levels > 0) {
+    const std::string tile = path;
+    path = (std::filesystem::path(mosaic_directory) /
+            ("mosaic-" + std::to_string(1 << mosaic_levels) + "x" + std::to_string(1 << mosaic_levels) + ".copc.laz"))
+               .string();
+    const auto start = Clock::now();
+    test::writeCopcMosaic(tile, mosaic_levels, path);
+    std::printf("wrote %s from %s in %.0f ms\n", path.c_str(), tile.c_str(), millisecondsSince(start));
   }
 
   double open_ms = std::numeric_limits<double>::infinity();
