@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/png_image.h"
+#include "tests/support/copc_mosaic.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_directory.h"
 
 namespace {
@@ -265,6 +267,34 @@ TEST_F(Cli, RenderWritesTheViewAsAPng) {
   const plumb::io::RgbaImage view = plumb::io::readPng(path("inside.png"));
   EXPECT_EQ(view.width, 200);
   EXPECT_EQ(view.height, 120);
+}
+
+// A COPC file needs no import: info, grow and render open it in place, and leave no file behind.
+TEST_F(Cli, CopcFilesOpenInPlace) {
+  PLUMB_REQUIRE_FORMAT_FILE(copc, "copc/lone-star.copc.laz");
+  const Outcome info = plumb("info --verify " + copc);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("format      COPC 1.0, LAZ 1.4 point format 6"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("points      518,862"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("verified"), std::string::npos) << info.out;
+
+  const Outcome grow = plumb("grow " + copc + " --seed 515388.976,4918368.237,2325.016");
+  ASSERT_EQ(grow.exit_code, 0) << grow.err;
+  EXPECT_EQ(grow.out.find("imported"), std::string::npos) << grow.out;
+  EXPECT_NE(grow.out.find("grew 1 segment"), std::string::npos) << grow.out;
+
+  // A 2 x 2 mosaic has an empty root: the renderer draws the nodes below it.
+  plumb::test::writeCopcMosaic(copc, 1, path("mosaic.copc.laz"));
+  const Outcome render = plumb("render " + path("mosaic.copc.laz") +
+                               " --view top --size 200x200 --colour elevation --edl off -o " + path("top.png"));
+  ASSERT_EQ(render.exit_code, 0) << render.err;
+  const plumb::io::RgbaImage image = plumb::io::readPng(path("top.png"));
+  std::size_t lit = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) lit += image.pixel(x, y) != image.pixel(0, 0);
+  }
+  EXPECT_GT(lit, std::size_t{200 * 200 / 4}) << "the four copies cover about half of the view";
+  EXPECT_EQ(entries(), 2u) << "the mosaic and top.png only";
 }
 
 TEST_F(Cli, RenderRejectsBadArgumentsAndWritesNothing) {
