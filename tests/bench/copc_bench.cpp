@@ -87,6 +87,10 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (!std::filesystem::exists(path)) {
+    std::printf("skipped: %s not found (../shared/data is beside the repository)\n", path.c_str());
+    return 0;
+  }
   if (mosaic_levels > 0) {
     const std::string tile = path;
     path = (std::filesystem::path(mosaic_directory) /
