@@ -43,11 +43,16 @@ constexpr std::size_t kEntryBytes = 32;
 // Deeper keys than this cannot be addressed with 32-bit cell coordinates; 2^30 cells per axis
 // already keep a 1000 km cube at 1 mm.
 constexpr std::int32_t kMaxLevel = 30;
+// A node is a unit of streaming: writers keep them near 10^5 points. A count beyond this one is
+// corruption, refused before decoding it would allocate gigabytes.
+constexpr std::uint32_t kMaxNodePoints = std::uint32_t{1} << 24;
 // A COPC file's point data starts with the 8-byte offset of LAZ's chunk table.
 constexpr std::uint64_t kChunkTableOffsetBytes = 8;
 
-// Where looksLikeCopc looks: the header size field, and the user and record ids of a VLR header.
+// Where looksLikeCopc looks: the header size field, and the user and record ids of a VLR header;
+// and the point format byte, for errors.
 constexpr std::size_t kHeaderSizeAt = 94;
+constexpr std::size_t kPointFormatAt = 104;
 constexpr std::size_t kVlrUserIdAt = 2;
 constexpr std::size_t kVlrRecordIdAt = 18;
 constexpr std::size_t kVlrHeaderBytes = 54;
@@ -71,16 +76,16 @@ bool CopcFile::looksLikeCopc(const std::string& path) {
   if (in.gcount() != static_cast<std::streamsize>(start.size()) || std::memcmp(start.data(), "LASF", 4) != 0) {
     return false;
   }
-  const auto header_size = loadLittleEndian<std::uint16_t>(reinterpret_cast<const std::byte*>(start.data()) + kHeaderSizeAt);
+  const auto header_size =
+      loadLittleEndian<std::uint16_t>(reinterpret_cast<const std::byte*>(start.data()) + kHeaderSizeAt);
   std::array<char, kVlrHeaderBytes> vlr{};
   in.seekg(header_size);
   in.read(vlr.data(), vlr.size());
   if (in.gcount() != static_cast<std::streamsize>(vlr.size())) return false;
   std::string_view user(vlr.data() + kVlrUserIdAt, 16);
   user = user.substr(0, user.find('\0'));
-  return user == kCopcUserId &&
-         loadLittleEndian<std::uint16_t>(reinterpret_cast<const std::byte*>(vlr.data()) + kVlrRecordIdAt) ==
-             kCopcInfoRecordId;
+  return user == kCopcUserId && loadLittleEndian<std::uint16_t>(reinterpret_cast<const std::byte*>(vlr.data()) +
+                                                                kVlrRecordIdAt) == kCopcInfoRecordId;
 }
 
 CopcFile::CopcFile(std::string path) : path_(std::move(path)) {
@@ -88,9 +93,10 @@ CopcFile::CopcFile(std::string path) : path_(std::move(path)) {
   header_ = readLasHeader(source);
   const bool layered = header_.laszip && header_.laszip->compressor == LazCompressor::kLayeredChunked;
   if (header_.format < 6 || header_.format > 8 || !layered) {
-    throw source.errorAt(104, "a COPC file holds LAZ point formats 6 to 8 in layered chunks; this one holds " +
-                                  std::string(header_.compressed() ? "LAZ" : "uncompressed LAS") + " point format " +
-                                  std::to_string(header_.format) + " (a damaged or mislabelled file)");
+    throw source.errorAt(kPointFormatAt,
+                         "a COPC file holds LAZ point formats 6 to 8 in layered chunks; this one holds " +
+                             std::string(header_.compressed() ? "LAZ" : "uncompressed LAS") + " point format " +
+                             std::to_string(header_.format) + " (a damaged or mislabelled file)");
   }
   readInfo(source);
   readHierarchy(source);
@@ -137,8 +143,8 @@ void CopcFile::readHierarchy(FileSource& source) {
     const Page at = pages.back();
     pages.pop_back();
     if (at.offset > source.size() || at.bytes > source.size() - at.offset || at.bytes % kEntryBytes != 0) {
-      throw source.errorAt(at.pointer_at, "a COPC hierarchy page of " + std::to_string(at.bytes) +
-                                              " bytes from byte " + std::to_string(at.offset) +
+      throw source.errorAt(at.pointer_at, "a COPC hierarchy page of " + std::to_string(at.bytes) + " bytes from byte " +
+                                              std::to_string(at.offset) +
                                               " lies outside the file or is not a whole number of 32-byte entries");
     }
     // Pages never overlap, so together they fit in the file: a loop or a fan of pages over the
@@ -169,8 +175,7 @@ void CopcFile::readHierarchy(FileSource& source) {
       if (!in_cube) throw source.errorAt(entry_at, "the COPC hierarchy key " + key + " lies outside the octree's cube");
       if (point_count < -1 || byte_size < 0) {
         throw source.errorAt(entry_at, "the COPC hierarchy entry of " + key + " has point count " +
-                                           std::to_string(point_count) + " and byte size " +
-                                           std::to_string(byte_size));
+                                           std::to_string(point_count) + " and byte size " + std::to_string(byte_size));
       }
       node.bytes = static_cast<std::uint32_t>(byte_size);
       if (point_count == -1) {
@@ -180,9 +185,10 @@ void CopcFile::readHierarchy(FileSource& source) {
       } else if (point_count > 0) {
         node.points = static_cast<std::uint32_t>(point_count);
         const std::uint64_t chunks_begin = header_.point_offset + kChunkTableOffsetBytes;
-        if (node.points > header_.point_count) {
+        if (node.points > header_.point_count || node.points > kMaxNodePoints) {
           throw source.errorAt(entry_at, "the COPC node " + key + " claims " + std::to_string(node.points) +
-                                             " points, more than the file's " + std::to_string(header_.point_count));
+                                             " points, more than the file's " + std::to_string(header_.point_count) +
+                                             " or than a node may hold (" + std::to_string(kMaxNodePoints) + ")");
         }
         if (node.offset < chunks_begin || node.offset > header_.compressed_end ||
             node.bytes > header_.compressed_end - node.offset || node.bytes < header_.record_length) {
@@ -204,8 +210,7 @@ void CopcFile::readHierarchy(FileSource& source) {
   }
   if (points != header_.point_count) {
     throw source.errorAt(info_.root_hier_offset, "the COPC hierarchy holds " + std::to_string(points) +
-                                                     " points, the header says " +
-                                                     std::to_string(header_.point_count));
+                                                     " points, the header says " + std::to_string(header_.point_count));
   }
 }
 

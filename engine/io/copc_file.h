@@ -29,9 +29,9 @@ struct CopcInfo {
 struct CopcNode {
   std::int32_t level = 0;  // the VoxelKey (d, x, y, z): level d, x y z in [0, 2^d)
   std::int32_t x = 0, y = 0, z = 0;
-  std::uint64_t offset = 0;       // file offset of the node's LAZ chunk (0 points: none)
-  std::uint32_t bytes = 0;        // of the chunk
-  std::uint32_t points = 0;       // 0: a node the hierarchy names but that holds no points
+  std::uint64_t offset = 0;        // file offset of the node's LAZ chunk (0 points: none)
+  std::uint32_t bytes = 0;         // of the chunk
+  std::uint32_t points = 0;        // 0: a node the hierarchy names but that holds no points
   std::uint64_t entry_offset = 0;  // file offset of the hierarchy entry, for errors
 };
 
@@ -49,7 +49,7 @@ class CopcFile {
   // not compressed in layered chunks, a halfsize or spacing that is not positive and finite, a
   // hierarchy page outside the file or not a whole number of entries, a page visited twice, an
   // entry whose key lies outside the cube (x, y or z not in [0, 2^d), d beyond 30) or repeats,
-  // a point count below -1 or above the file's, a chunk outside the point data or shorter than
+  // a point count below -1 or above the file's or 2^24, a chunk outside the point data or shorter than
   // one record, or node point counts whose sum is not the header's.
   explicit CopcFile(std::string path);
 

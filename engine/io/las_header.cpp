@@ -134,9 +134,9 @@ LasHeader readLasHeader(FileSource& source) {
   const std::size_t required = minor >= 4 ? kHeaderBytes14 : minor == 3 ? kHeaderBytes13 : kHeaderBytes12;
   result.header_size = loadLittleEndian<std::uint16_t>(header.data() + kHeaderSizeAt);
   if (result.header_size < required) {
-    throw source.errorAt(kHeaderSizeAt, "header size " + std::to_string(result.header_size) +
-                                            " is smaller than the " + std::to_string(required) + " bytes LAS " +
-                                            version + " requires (a corrupt header, or a wrong version number)");
+    throw source.errorAt(kHeaderSizeAt, "header size " + std::to_string(result.header_size) + " is smaller than the " +
+                                            std::to_string(required) + " bytes LAS " + version +
+                                            " requires (a corrupt header, or a wrong version number)");
   }
   if (result.header_size > source.size()) {
     throw source.errorAt(source.size(), "truncated header: the header declares " + std::to_string(result.header_size) +
@@ -192,11 +192,11 @@ LasHeader readLasHeader(FileSource& source) {
   }
   const std::uint64_t room = (source.size() - result.point_offset) / result.record_length;
   if (result.point_count > kAbsurdPointBytes / result.record_length) {
-    throw source.errorAt(minor >= 4 ? kPointCountAt : kLegacyCountAt,
-                         "absurd point count " + std::to_string(result.point_count) +
-                             (result.compressed() ? std::string()
-                                                  : " (the file has room for " + std::to_string(room) + ")") +
-                             "; the header is corrupt");
+    throw source.errorAt(
+        minor >= 4 ? kPointCountAt : kLegacyCountAt,
+        "absurd point count " + std::to_string(result.point_count) +
+            (result.compressed() ? std::string() : " (the file has room for " + std::to_string(room) + ")") +
+            "; the header is corrupt");
   }
   if (result.compressed()) {
     // The points end at the EVLRs (LAS 1.4), else at the end of the file.

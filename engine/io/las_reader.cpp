@@ -70,7 +70,8 @@ class LasReader final : public LasPointReader {
 
   std::size_t readRecords(std::vector<std::byte>& records, std::size_t max_records) override {
     assert(max_records > 0 && "readRecords() needs room for at least one record; pass max_records >= 1");
-    const auto count = static_cast<std::size_t>(std::min<std::uint64_t>(max_records, header_.point_count - next_record_));
+    const auto count =
+        static_cast<std::size_t>(std::min<std::uint64_t>(max_records, header_.point_count - next_record_));
     records.resize(count * header_.record_length);
     if (laz_) {
       laz_->decode(records);

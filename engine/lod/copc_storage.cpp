@@ -123,8 +123,8 @@ OctreeHeader headerOf(const io::CopcFile& file, const std::vector<NodeInfo>& nod
     if (node.child_mask == 0) h.leaf_max_points = std::max(h.leaf_max_points, node.point_count);
   }
   h.attributes = kHasIntensity | (las.layout.has_colour ? kHasColour : 0u);
-  const Box3 cube_box{h.cube.origin, {h.cube.origin[0] + h.cube.size, h.cube.origin[1] + h.cube.size,
-                                      h.cube.origin[2] + h.cube.size}};
+  const Box3 cube_box{h.cube.origin,
+                      {h.cube.origin[0] + h.cube.size, h.cube.origin[1] + h.cube.size, h.cube.origin[2] + h.cube.size}};
   h.bounds = las.bounds ? Box3{las.bounds->min, las.bounds->max} : cube_box;
   // The root hierarchy page plays the part of Plumb's node index; it has no checksum.
   h.index_offset = info.root_hier_offset;

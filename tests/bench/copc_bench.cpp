@@ -42,7 +42,8 @@ double millisecondsSince(Clock::time_point start) {
 Eigen::Vector3d defaultSeed(const lod::Octree& octree) {
   const lod::Box3& bounds = octree.header().bounds;
   Eigen::Vector3d middle;
-  for (int a = 0; a < 3; ++a) middle[a] = 0.5 * (bounds.min[static_cast<std::size_t>(a)] + bounds.max[static_cast<std::size_t>(a)]);
+  for (int a = 0; a < 3; ++a)
+    middle[a] = 0.5 * (bounds.min[static_cast<std::size_t>(a)] + bounds.max[static_cast<std::size_t>(a)]);
   const lod::NodeInfo* best = nullptr;
   double best_distance = std::numeric_limits<double>::infinity();
   for (const lod::NodeInfo& node : octree.nodes()) {
@@ -129,16 +130,17 @@ int main(int argc, char** argv) {
 
   std::uint64_t grown = 0;
   for (const auto& segment : result.segments) grown += segment.points;
-  std::printf("  click %.3f %.3f %.3f seen from %.0f m: spacing at the click %.3f m (measured in %.2f ms)\n",
-              seed->x(), seed->y(), seed->z(), view_distance, data.spacing_m, measure_ms);
+  std::printf("  click %.3f %.3f %.3f seen from %.0f m: spacing at the click %.3f m (measured in %.2f ms)\n", seed->x(),
+              seed->y(), seed->z(), view_distance, data.spacing_m, measure_ms);
   std::printf("  grow: %.2f ms, %s, %zu segments, %llu points, level %u, %llu cells\n", result.elapsed_ms,
               result.converged ? "converged" : "stopped", result.segments.size(),
               static_cast<unsigned long long>(grown), result.level,
               static_cast<unsigned long long>(result.cells_visited));
-  std::printf("  nodes loaded (click and grow): %llu of %zu (%.1f %%), %llu of %llu chunk bytes (%.1f %%)\n",
-              static_cast<unsigned long long>(stats.misses), octree->nodes().size(),
-              100.0 * static_cast<double>(stats.misses) / static_cast<double>(octree->nodes().size()),
-              static_cast<unsigned long long>(stats.bytes_read), static_cast<unsigned long long>(stored_bytes),
-              100.0 * static_cast<double>(stats.bytes_read) / static_cast<double>(std::max<std::uint64_t>(stored_bytes, 1)));
+  std::printf(
+      "  nodes loaded (click and grow): %llu of %zu (%.1f %%), %llu of %llu chunk bytes (%.1f %%)\n",
+      static_cast<unsigned long long>(stats.misses), octree->nodes().size(),
+      100.0 * static_cast<double>(stats.misses) / static_cast<double>(octree->nodes().size()),
+      static_cast<unsigned long long>(stats.bytes_read), static_cast<unsigned long long>(stored_bytes),
+      100.0 * static_cast<double>(stats.bytes_read) / static_cast<double>(std::max<std::uint64_t>(stored_bytes, 1)));
   return 0;
 }

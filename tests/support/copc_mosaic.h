@@ -92,7 +92,9 @@ inline void writeCopcMosaic(const std::string& tile, int levels, const std::stri
         const std::int32_t step = 1 << node.level;
         entries.push_back({{node.level + levels, node.x + static_cast<std::int32_t>(i) * step,
                             node.y + static_cast<std::int32_t>(j) * step, node.z},
-                           file.size(), static_cast<std::int32_t>(node.bytes), static_cast<std::int32_t>(node.points)});
+                           file.size(),
+                           static_cast<std::int32_t>(node.bytes),
+                           static_cast<std::int32_t>(node.points)});
         file += chunk;
       }
     }

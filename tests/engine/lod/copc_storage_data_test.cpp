@@ -29,14 +29,14 @@
 namespace plumb::lod {
 namespace {
 
-const char* const kCopcFiles[] = {"copc/1.2-with-color.copc.laz",     "copc/autzen.copc.laz",
-                                  "copc/autzen_clip_4326.copc.laz",  "copc/autzen_clip_native.copc.laz",
-                                  "copc/lone-star.copc.laz",         "copc/simple_with_page.copc.laz"};
+const char* const kCopcFiles[] = {"copc/1.2-with-color.copc.laz",   "copc/autzen.copc.laz",
+                                  "copc/autzen_clip_4326.copc.laz", "copc/autzen_clip_native.copc.laz",
+                                  "copc/lone-star.copc.laz",        "copc/simple_with_page.copc.laz"};
 
 // A point as the LAS file stores it: integer coordinates (X = (x - offset) / scale), intensity,
 // colour. Comparing these compares positions to within the file's own precision.
-using StoredPoint = std::tuple<std::int64_t, std::int64_t, std::int64_t, std::uint16_t, std::uint16_t,
-                               std::uint16_t, std::uint16_t>;
+using StoredPoint =
+    std::tuple<std::int64_t, std::int64_t, std::int64_t, std::uint16_t, std::uint16_t, std::uint16_t, std::uint16_t>;
 
 StoredPoint stored(const std::array<double, 3>& p, std::uint16_t intensity, const std::array<std::uint16_t, 3>& rgb,
                    const io::LasHeader& las) {
@@ -153,7 +153,8 @@ TEST(CopcOctree, CubeAndSpacingComeFromTheInfoRecord) {
 TEST(CopcOctree, PlainLasAndLazAreNotOctrees) {
   PLUMB_REQUIRE_FORMAT_FILE(las, "las/simple.las");
   EXPECT_FALSE(Octree::looksLikeOctree(las));
-  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(las).parent_path().parent_path() / "laz")) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::path(las).parent_path().parent_path() / "laz")) {
     if (entry.path().extension() == ".laz") {
       EXPECT_FALSE(Octree::looksLikeOctree(entry.path().string())) << entry.path();
     }
