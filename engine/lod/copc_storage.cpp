@@ -85,8 +85,8 @@ std::vector<NodeInfo> nodeIndex(const io::CopcFile& file) {
     for (std::optional<CellKey> parent = key.parent(); parent && !index.contains(*parent); parent = parent->parent()) {
       if (!named.contains(*parent)) {
         throw fileErrorAt(file.path(), entry_offset,
-                          "the COPC node " + keyText(key) + " has no parent " + keyText(*parent) +
-                              " in the hierarchy: a corrupt hierarchy");
+                          "the COPC node " + keyText(key) + " lies in the cell " + keyText(*parent) +
+                              ", which the hierarchy does not list: a corrupt hierarchy");
       }
       index[*parent].key = *parent;
     }

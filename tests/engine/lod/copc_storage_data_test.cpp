@@ -211,6 +211,17 @@ class MalformedCopc : public ::testing::Test {
     throw std::runtime_error("no node at that level");
   }
 
+  // The root page's entry that points at a child page (point count -1), or 0.
+  std::uint64_t childPagePointer() const {
+    for (std::uint64_t e = 0; e < copc_->info().root_hier_size / 32; ++e) {
+      const std::uint64_t entry = copc_->info().root_hier_offset + 32 * e;
+      std::int32_t count = 0;
+      std::memcpy(&count, bytes_.data() + entry + 28, 4);
+      if (count == -1) return entry;
+    }
+    return 0;
+  }
+
   static std::string at(std::uint64_t offset) { return "at byte " + std::to_string(offset); }
 
   test::TempDirectory dir_;
@@ -229,19 +240,23 @@ TEST_F(MalformedCopc, RootPageBeyondTheEnd) {
 }
 
 TEST_F(MalformedCopc, ChildPageBeyondTheEnd) {
-  // The page pointer is the one entry whose point count is -1; CopcFile lists it as a node without points.
-  std::uint64_t pointer_at = 0;
-  for (std::uint64_t e = 0; e < copc_->info().root_hier_size / 32; ++e) {
-    const std::uint64_t entry = copc_->info().root_hier_offset + 32 * e;
-    std::int32_t count = 0;
-    std::memcpy(&count, bytes_.data() + entry + 28, 4);
-    if (count == -1) pointer_at = entry;
-  }
+  const std::uint64_t pointer_at = childPagePointer();
   ASSERT_NE(pointer_at, 0u) << "the file has a child page";
   put<std::uint64_t>(pointer_at + 16, bytes_.size() - 8);
   const std::string error = openError();
   EXPECT_NE(error.find(at(pointer_at)), std::string::npos) << error;
   EXPECT_NE(error.find("outside the file"), std::string::npos) << error;
+}
+
+// A child page that points back at the root page: a loop, refused instead of followed forever.
+TEST_F(MalformedCopc, PageLoop) {
+  const std::uint64_t pointer_at = childPagePointer();
+  ASSERT_NE(pointer_at, 0u) << "the file has a child page";
+  put<std::uint64_t>(pointer_at + 16, copc_->info().root_hier_offset);
+  put<std::int32_t>(pointer_at + 24, static_cast<std::int32_t>(copc_->info().root_hier_size));
+  const std::string error = openError();
+  EXPECT_NE(error.find(at(pointer_at)), std::string::npos) << error;
+  EXPECT_NE(error.find("listed twice"), std::string::npos) << error;
 }
 
 TEST_F(MalformedCopc, KeyOutsideTheCube) {
@@ -257,7 +272,7 @@ TEST_F(MalformedCopc, KeyWithoutAParent) {
   put<std::int32_t>(node.entry_offset, 9);  // (9, x, y, z): nothing between it and the root
   const std::string error = openError();
   EXPECT_NE(error.find(at(node.entry_offset)), std::string::npos) << error;
-  EXPECT_NE(error.find("has no parent"), std::string::npos) << error;
+  EXPECT_NE(error.find("which the hierarchy does not list"), std::string::npos) << error;
 }
 
 TEST_F(MalformedCopc, AbsurdPointCount) {
