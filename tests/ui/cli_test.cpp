@@ -167,6 +167,37 @@ TEST_F(Cli, AnInterruptedImportLeavesNothingBehind) {
   EXPECT_EQ(entries(), 1u) << "only the input may remain: no octree, no temporary file";
 }
 
+// SIGKILL cannot be caught: the killed import's unfinished octree stays beside the output (its
+// chunk files were unlinked when made), and the next import of the same file removes it and
+// succeeds. Three kills at different moments of the build.
+TEST_F(Cli, AKilledImportIsCleanedUpByTheNext) {
+  ASSERT_EQ(plumb("simulate --points 3000000 -o " + path("big.ply")).exit_code, 0);
+  const std::string input = path("big.ply"), output = path("site.plumb");
+  int killed = 0;
+  for (const int after_ms : {300, 800, 1500}) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      ::execl(PLUMB_BINARY, PLUMB_BINARY, "import", input.c_str(), "-o", output.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    ::usleep(static_cast<useconds_t>(after_ms) * 1000);
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    if (WIFSIGNALED(status)) {
+      ++killed;
+      EXPECT_FALSE(fs::exists(output)) << "killed after " << after_ms << " ms: no octree may appear";
+    }
+    fs::remove(output);  // when the import finished before its kill
+  }
+  if (killed == 0) GTEST_SKIP() << "every import finished before its kill";
+  const Outcome import = plumb("import " + input + " -o " + output);
+  ASSERT_EQ(import.exit_code, 0) << import.err;
+  EXPECT_EQ(plumb("info " + output + " --verify").exit_code, 0);
+  EXPECT_EQ(entries(), 2u) << "the input and the octree: no temporary of the killed imports";
+}
+
 TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
   ASSERT_EQ(plumb("simulate --points 300000 --noise-mm 2 --offset 512000,5403000,250 -o " + path("room.ply")).exit_code,
             0);

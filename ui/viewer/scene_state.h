@@ -83,6 +83,7 @@ class SceneState {
   ecs::Registry& registry() { return registry_; }
   const ecs::Registry& registry() const { return registry_; }
   ecs::History& history() { return history_; }
+  const ecs::History& history() const { return history_; }
   ecs::Entity toolEntity() const { return tool_; }
   const ToolState& tool() const { return registry_.get<ToolState>(tool_); }
 

@@ -228,6 +228,10 @@ class StepParser {
       if (out.name.empty() || out.name.find('/') != std::string::npos || out.name.size() > 200) {
         fail("'screenshot' must be a file name (no folders; it goes into --screenshot-dir)");
       }
+    } else if (step_.contains("memory")) {
+      out.kind = ScriptStep::Kind::kMemory;
+      out.name = step_.at("memory").is_string() ? step_.at("memory").get<std::string>() : "";
+      if (out.name.size() > 200) fail("'memory' is a label of at most 200 characters");
     } else if (step_.contains("resize")) {
       const auto [w, h] = pixel("resize");
       if (w < 64 || h < 64 || w > 16384 || h > 16384) fail("'resize' must be from 64 x 64 to 16384 x 16384");
@@ -319,6 +323,10 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
         frame.screenshot = step.name;
         done();
         return frame;  // one per frame: the copy is of this frame's image
+      case ScriptStep::Kind::kMemory:
+        frame.memory = step.name;
+        done();
+        continue;
       case ScriptStep::Kind::kResize:
         frame.resize = std::pair{step.width, step.height};
         done();
@@ -354,7 +362,8 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
       }
     }
   }
-  frame.finished = true;
+  // Steps at the end that take no frame of their own still run: the session ends on the next call.
+  frame.finished = !frame.tool && !frame.grow_detail && !frame.memory;
   return frame;
 }
 

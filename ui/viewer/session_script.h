@@ -23,6 +23,8 @@
 //   {"wait": "streaming_idle"}             the last two time out after "timeout_s" (default 60)
 //   {"screenshot": "name.png"}             into --screenshot-dir
 //   {"resize": [w, h]}                     the window
+//   {"memory": "label"}                    print what the session holds: resident memory, node
+//                                          cache, GPU memory, undo history (soak runs)
 //
 // The session ends after the last step (the scene is dumped, the viewer exits).
 
@@ -53,6 +55,7 @@ struct ScriptStep {
     kWaitStreamingIdle,
     kScreenshot,  // `name`
     kResize,      // `width`, `height`
+    kMemory,      // `name`: the label of the report
   };
   Kind kind = Kind::kEvents;
   std::vector<std::vector<InputEvent>> frames{};
@@ -77,6 +80,7 @@ struct ScriptFrame {
   std::optional<int> grow_detail;  // the Grow panel's Detail entry
   std::optional<std::string> screenshot;  // file name
   std::optional<std::pair<int, int>> resize;
+  std::optional<std::string> memory;  // print a memory report with this label
   std::optional<Eigen::Vector3d> click_world;                       // the viewer turns it into a click at its pixel
   std::optional<Eigen::Vector3d> move_world;                        // ... a mouse move to its pixel
   std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> look;  // eye and target

@@ -175,6 +175,28 @@ void Viewer::autosaveProject(bool now) {
   }
 }
 
+// What the session holds, for soak runs (scripts/soak): memory that grows with the session's
+// length rather than with what it shows is a leak.
+void Viewer::reportMemory(const std::string& label) const {
+  long size_pages = 0, resident_pages = 0;  // /proc/self/statm: total size, then resident, in pages
+  if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(statm, "%ld %ld", &size_pages, &resident_pages) != 2) resident_pages = 0;
+    std::fclose(statm);
+  }
+  const double mib = 1.0 / (1 << 20);
+  const double resident_mib = static_cast<double>(resident_pages) * static_cast<double>(::sysconf(_SC_PAGESIZE)) * mib;
+  const lod::NodeCacheStats cache = cloud_ ? cloud_->cache->stats() : lod::NodeCacheStats{};
+  const render::GpuNodeCacheStats gpu_nodes = cloud_ ? cloud_->renderer->gpuNodeStats() : render::GpuNodeCacheStats{};
+  std::printf(
+      "plumb view: memory %s: resident %.1f MiB, node cache %.1f MiB in %llu nodes, GPU %.1f MiB in use "
+      "(%.1f reserved; nodes %.1f MiB), undo history %zu edits, scene %zu segments %zu polygons\n",
+      label.c_str(), resident_mib, static_cast<double>(cache.bytes) * mib, static_cast<unsigned long long>(cache.nodes),
+      static_cast<double>(allocator_.bytesInUse()) * mib, static_cast<double>(allocator_.bytesReserved()) * mib,
+      static_cast<double>(gpu_nodes.bytes) * mib, scene_.history().undoCount(),
+      scene_.registry().count<Segment>(), scene_.registry().count<Polygon>());
+  std::fflush(stdout);
+}
+
 // glTF, OBJ, DXF and CSV beside the project: "<project without .plumbproj>.glb", ...
 void Viewer::exportProject() {
   std::filesystem::path stem = project_.path();
@@ -400,6 +422,7 @@ int Viewer::run() {
         }
       }
       if (quit_) break;
+      if (frame.memory) reportMemory(*frame.memory);
       screenshot = frame.screenshot;
     }
 
@@ -532,6 +555,7 @@ void Viewer::handleViewEvent(const InputEvent& event) {
     if (control && event.key == GLFW_KEY_Z) return undo();
     if (control && event.key == GLFW_KEY_Y) return redo();
     if (control && event.key == GLFW_KEY_S) return saveProject();
+    if (control && event.key == GLFW_KEY_E) return exportProject();
     if (control && event.key == GLFW_KEY_G) {
       groupSelected();
       return;

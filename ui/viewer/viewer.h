@@ -102,6 +102,7 @@ class Viewer {
   void openProject();
   cad::Project currentProject() const;
   void saveProject();
+  void reportMemory(const std::string& label) const;
   void autosaveProject(bool now);
   void exportProject();
   void render(bool screenshot, const std::string& screenshot_name);

@@ -60,10 +60,11 @@ void Viewer::drawProjectPanel() {
   ImGui::Text("%s%s", std::filesystem::path(project_.path()).filename().string().c_str(), unsaved ? " *" : "");
   tooltip(project_.path().c_str());
   if (ImGui::Button("Save")) saveProject();
-  tooltip("Save the project (Ctrl+S); unsaved changes also go to an autosave beside it every 30 s");
+  tooltip("Save the project (Ctrl+S); unsaved changes also go to an autosave beside it (every 30 s unless "
+          "--autosave-s says otherwise)");
   ImGui::SameLine();
   if (ImGui::Button("Export")) exportProject();
-  tooltip("Write glTF (.glb), OBJ, DXF and a CSV of the corners beside the project");
+  tooltip("Write glTF (.glb), OBJ, DXF and a CSV of the corners beside the project (Ctrl+E)");
   if (!project_message_.empty()) ImGui::TextWrapped("%s", project_message_.c_str());
   endInColumn(true);
 }

@@ -46,9 +46,10 @@ TEST(SessionScript, ParsesEveryStepKind) {
     {"wait": "grower_idle", "timeout_s": 9},
     {"wait": "streaming_idle"},
     {"screenshot": "a.png"},
-    {"resize": [800, 600]}
+    {"resize": [800, 600]},
+    {"memory": "soak"}
   ])"));
-  ASSERT_EQ(steps.size(), 14u);
+  ASSERT_EQ(steps.size(), 15u);
   EXPECT_EQ(steps[0].frames.size(), 1u);
   ASSERT_EQ(steps[1].frames.size(), 3u) << "move, press, release: one frame each";
   EXPECT_EQ(steps[1].frames[1][0].button, GLFW_MOUSE_BUTTON_RIGHT);
@@ -69,6 +70,8 @@ TEST(SessionScript, ParsesEveryStepKind) {
   EXPECT_EQ(steps[11].kind, ScriptStep::Kind::kWaitStreamingIdle);
   EXPECT_EQ(steps[12].name, "a.png");
   EXPECT_EQ(steps[13].width, 800);
+  EXPECT_EQ(steps[14].kind, ScriptStep::Kind::kMemory);
+  EXPECT_EQ(steps[14].name, "soak");
 }
 
 TEST(SessionScript, MistakesNameTheFileAndTheStep) {
@@ -120,6 +123,15 @@ TEST(SessionScript, AWaitInMillisecondsCountsTheScriptsFrames) {
   });
   for (int frame = 0; frame < 8; ++frame) EXPECT_FALSE(player.next(true, true).screenshot) << "frame " << frame;
   EXPECT_EQ(player.next(true, true).screenshot, "after.png");
+}
+
+// A last step that takes no frame of its own (a memory report) still runs before the session ends.
+TEST(SessionScript, TheLastStepRunsBeforeTheSessionEnds) {
+  ScriptPlayer player(std::vector<ScriptStep>{ScriptStep{.kind = ScriptStep::Kind::kMemory, .name = "end"}});
+  const ScriptFrame frame = player.next(true, true);
+  EXPECT_EQ(frame.memory, "end");
+  EXPECT_FALSE(frame.finished);
+  EXPECT_TRUE(player.next(true, true).finished);
 }
 
 TEST(SessionScript, AWaitThatTimesOutFailsTheSession) {
