@@ -111,7 +111,7 @@ bool hasSaved(const std::string& log) {
 }
 
 // Rectangles from three points on the floor (10 cm squares on a grid, Rectangle mode on), one
-// after another, with a save after every third: more than a session lives to draw.
+// after another, with a save after every other: more than a session lives to draw.
 json drawingAndSaving() {
   json steps = json::array({{{"wait", "streaming_idle"}, {"timeout_s", 300}},
                             {{"look", {{"position", {1.6, 1.4, 2.2}}, {"target", {1.6, 1.5, 0.0}}}}},
@@ -124,7 +124,7 @@ json drawingAndSaving() {
       steps.push_back({{"click_world", {x + dx, y + dy, 0.0}}});
       steps.push_back({{"wait", "frames"}, {"count", 1}});
     }
-    if (i % 3 == 2) {
+    if (i % 2 == 0) {
       steps.push_back({{"key_down", "LEFT_CONTROL"}});
       steps.push_back({{"key", "S"}});
       steps.push_back({{"key_up", "LEFT_CONTROL"}});

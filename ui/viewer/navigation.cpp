@@ -38,8 +38,9 @@ void Navigator::set(const view::Camera& camera) {
   last_click_time_s_ = -1.0;
 }
 
-void Navigator::setViewport(int width_px, int height_px) {
+void Navigator::setViewport(int width_px, int height_px, int window_width_px) {
   if (width_px <= 0 || height_px <= 0) return;
+  render_px_per_window_px_ = window_width_px > 0 ? static_cast<double>(width_px) / window_width_px : 1.0;
   if (camera_.viewport_width_px == width_px && camera_.viewport_height_px == height_px) return;
   // Not a change of view: a moving view renders at a lower resolution than a still one.
   camera_.viewport_width_px = home_.viewport_width_px = width_px;
@@ -177,7 +178,7 @@ void Navigator::move(const InputEvent& event) {
       set(view::orbit(camera_, pivot_, -dx * kOrbitRadPerPx, dy * kOrbitRadPerPx));
       break;
     case Drag::kPan:
-      set(view::pan(camera_, dx, dy));
+      set(view::pan(camera_, dx * render_px_per_window_px_, dy * render_px_per_window_px_));
       break;
     case Drag::kLook:
       set(view::fly(camera_, Eigen::Vector3d::Zero(), -dx * kLookRadPerPx, dy * kLookRadPerPx));

@@ -12,7 +12,9 @@
 //   1 2 3 4          top, front, side, iso views (orthographic but iso); O perspective and
 //   H                orthographic; home: the view the cloud opened with
 //
-// Not thread-safe; the main thread owns it.
+// Events and picks are in window pixels: a drag turns or pans the view as far whatever the
+// render scale (dynamic resolution changes it while the view moves). Not thread-safe; the main
+// thread owns it.
 
 #include <Eigen/Core>
 #include <functional>
@@ -38,7 +40,9 @@ class Navigator {
   // Moves a flying camera by the keys held for `delta_s` seconds; the clock of double clicks.
   void update(double delta_s);
 
-  void setViewport(int width_px, int height_px);
+  // The camera's viewport in render pixels, and the window's width in window pixels (events come in
+  // window pixels; 0: the same as the viewport's).
+  void setViewport(int width_px, int height_px, int window_width_px = 0);
   void setCamera(const view::Camera& camera);
   // Makes `camera` (viewport aside) the home view and shows it.
   void setHome(const view::Camera& camera);
@@ -77,6 +81,7 @@ class Navigator {
   double press_x_ = 0.0, press_y_ = 0.0;
   double last_x_ = 0.0, last_y_ = 0.0;
   double travelled_px_ = 0.0;
+  double render_px_per_window_px_ = 1.0;  // the camera's viewport over the window
   double last_click_time_s_ = -1.0;
   double last_click_x_ = 0.0, last_click_y_ = 0.0;
   double clock_s_ = 0.0;  // advanced by update(), for double clicks

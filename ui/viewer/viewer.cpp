@@ -338,6 +338,7 @@ void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string te
   cloud->navigator =
       std::make_unique<Navigator>(Eigen::Vector3d(bounds.min[0], bounds.min[1], bounds.min[2]),
                                   Eigen::Vector3d(bounds.max[0], bounds.max[1], bounds.max[2]), width, height);
+  cloud->navigator->setViewport(width, height, static_cast<int>(std::max(1u, size.width)));
   if (home) cloud->navigator->setHome(*home);
   if (current) cloud->navigator->setCamera(*current);
   cloud->grow = std::make_unique<GrowSession>(jobs_, *cloud->cache, [this](const GrowUpdate& update) {
@@ -597,12 +598,13 @@ void Viewer::handleViewEvent(const InputEvent& event) {
     }
   }
   if (!cloud_) return;
-  // The view works in render pixels (the window's, times the render scale).
-  InputEvent scaled = event;
-  scaled.x *= renderScale();
-  scaled.y *= renderScale();
-  const bool clicked = cloud_->navigator->handle(scaled, [this](double x, double y) { return pickAt(x, y); });
-  if (clicked) click(scaled.x, scaled.y);
+  // The navigator works in window pixels (a drag turns the view as far whatever the render scale,
+  // which changes while the view moves); picks and the tools in render pixels (the window's, times
+  // the render scale).
+  const double scale = renderScale();
+  const bool clicked = cloud_->navigator->handle(
+      event, [this, scale](double x, double y) { return pickAt(x * scale, y * scale); });
+  if (clicked) click(event.x * scale, event.y * scale);
 }
 
 std::optional<Eigen::Vector3d> Viewer::pickAt(double x_px, double y_px) {
@@ -790,7 +792,7 @@ void Viewer::render(bool screenshot, const std::string& screenshot_name) {
   const VkExtent2D size = window_.framebufferSize();
   const int width = std::max(1, static_cast<int>(std::lround(size.width * scale)));
   const int height = std::max(1, static_cast<int>(std::lround(size.height * scale)));
-  cloud_->navigator->setViewport(width, height);
+  cloud_->navigator->setViewport(width, height, static_cast<int>(size.width));
   cloud_->renderer->setOverlay(overlay_.update(scene_.registry()));
   const std::optional<gpu::SwapchainImage> image = swapchain_.acquire();
   if (!image) return;

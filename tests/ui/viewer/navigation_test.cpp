@@ -86,6 +86,30 @@ TEST(Navigator, ARightDragPansWithTheCursor) {
   EXPECT_NEAR(pixel_after->y() - pixel_before->y(), 20.0, 0.5);
 }
 
+// Events come in window pixels; the view renders at a scale that dynamic resolution changes while
+// it moves. The same drag must turn the view as far at any scale, and a pan must keep what lies
+// under the cursor under it: 100 window pixels are 50 of a half-scale render.
+TEST(Navigator, ADragMovesTheViewAsFarWhateverTheRenderScale) {
+  Navigator full(kMin, kMax, 640, 360), half(kMin, kMax, 320, 180);
+  half.setViewport(320, 180, 640);
+  for (Navigator* navigator : {&full, &half}) {
+    navigator->handle(button(300, 200, true), kNothing);
+    for (int i = 1; i <= 10; ++i) navigator->handle(move(300 + 10 * i, 200), kNothing);
+    navigator->handle(button(400, 200, false), kNothing);
+  }
+  EXPECT_NEAR((full.camera().position - half.camera().position).norm(), 0.0, 1e-9);
+
+  const Eigen::Vector3d target = half.camera().target;
+  const auto pixel_before = view::pixelOf(half.camera(), target);
+  half.handle(button(300, 200, true, GLFW_MOUSE_BUTTON_RIGHT), kNothing);
+  half.handle(move(310, 200), kNothing);
+  half.handle(move(400, 200), kNothing);
+  half.handle(button(400, 200, false, GLFW_MOUSE_BUTTON_RIGHT), kNothing);
+  const auto pixel_after = view::pixelOf(half.camera(), target);
+  ASSERT_TRUE(pixel_before && pixel_after);
+  EXPECT_NEAR(pixel_after->x() - pixel_before->x(), 50.0, 0.5) << "render pixels: (400 - 300) / 2";
+}
+
 TEST(Navigator, TheWheelZoomsTowardsThePointUnderTheCursor) {
   Navigator navigator(kMin, kMax, 640, 360);
   const Eigen::Vector3d point = 0.5 * (kMin + kMax) + Eigen::Vector3d(2.0, 1.0, -0.5);
