@@ -232,8 +232,10 @@ int main(int argc, char** argv) {
                   static_cast<double>(flat.size()) / bare_ms / 1e3,
                   100.0 * (drawn / one_pixel) / (static_cast<double>(flat.size()) / bare_ms));
     }
-    for (const std::string& message : instance.validationMessages())
-      std::fprintf(stderr, "validation: %s\n", message.c_str());
+    // Figures taken while the validation layer reports a mistake are no figures: the run fails.
+    const std::vector<std::string> messages = instance.validationMessages();
+    for (const std::string& message : messages) std::fprintf(stderr, "validation: %s\n", message.c_str());
+    if (!messages.empty()) return 1;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "plumb_bench_render: %s\n", error.what());
     return 1;

@@ -157,8 +157,14 @@ TEST_F(Cli, AnInterruptedImportLeavesNothingBehind) {
     ::execl(PLUMB_BINARY, PLUMB_BINARY, "import", input.c_str(), "-o", output.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // Long enough to be inside the build (a few seconds here), short enough not to see it finish.
-  ::usleep(700'000);
+  // Inside the build: once its output's temporary exists (not a guess at how long that takes).
+  const auto building = [&] {
+    for (const auto& entry : fs::directory_iterator(directory_)) {
+      if (entry.path().filename().string().find("site.plumb.partial-") == 0) return true;
+    }
+    return false;
+  };
+  for (int waited_ms = 0; !building() && waited_ms < 120'000; waited_ms += 5) ::usleep(5'000);
   ::kill(child, SIGINT);
   int status = 0;
   ASSERT_EQ(::waitpid(child, &status, 0), child);

@@ -31,8 +31,9 @@ inline nlohmann::json jsonPoint(const Eigen::Vector3d& p) {
 }
 
 // `xvfb-run -a`, which starts Xvfb on the first free display from 99 and waits for it to be ready.
+// -noreset: a server that resets whenever its last client goes refuses connections while it does.
 inline std::string xvfbRun(const std::string& screen) {
-  return "xvfb-run -a -s '-screen 0 " + screen + "'";
+  return "xvfb-run -a -s '-screen 0 " + screen + " -noreset'";
 }
 
 // What the last session printed (stdout and stderr).

@@ -40,9 +40,10 @@ std::vector<const char*> WindowSystem::requiredInstanceExtensions() const {
 }
 
 bool WindowSystem::displayAvailable() {
-  if (glfwInit() != GLFW_TRUE) return false;
-  glfwTerminate();
-  return true;
+  // GLFW stays initialised for the WindowSystem that follows (its glfwInit returns at once, its
+  // destructor terminates): closing the probe's connection made a server with no other client
+  // (Xvfb) reset, and the viewer's own connection a moment later could fail while it did.
+  return glfwInit() == GLFW_TRUE;
 }
 
 Window::Window(const WindowSystem& /*system*/, int width, int height, const std::string& title) {

@@ -25,7 +25,8 @@ class WindowSystem {
   // The instance extensions a Vulkan surface on this window system needs.
   std::vector<const char*> requiredInstanceExtensions() const;
 
-  // True when GLFW can open a window here (an X server or Wayland compositor answers).
+  // True when GLFW can open a window here (an X server or Wayland compositor answers). Leaves
+  // GLFW initialised when it is: a WindowSystem made next takes it over.
   static bool displayAvailable();
 };
 

@@ -63,35 +63,46 @@ TEST(JobSystem, DefaultHasAtLeastTwoWorkersThatRunAtOnce) {
   EXPECT_EQ(done.get_future().wait_for(kDeadlockLimit), std::future_status::ready);
 }
 
+// The job runs until it sees the cancellation: it must see it, after having run (a job that never
+// saw it would stop at the deadline instead, with `saw` false).
 TEST(JobSystem, ARunningJobSeesItsCancellation) {
   JobSystem jobs;
   std::promise<void> started;
   std::atomic<long> steps{0};
+  std::atomic<bool> saw{false};
   const JobHandle handle = jobs.submit(Priority::interactive, "loop", [&](const CancelToken& cancel) {
+    const auto deadline = std::chrono::steady_clock::now() + kDeadlockLimit;
+    ++steps;
     started.set_value();
-    while (!cancel.cancelled()) ++steps;
+    while (!cancel.cancelled() && std::chrono::steady_clock::now() < deadline) ++steps;
+    saw = cancel.cancelled();
   });
   started.get_future().wait();
   EXPECT_FALSE(handle.finished());
   handle.cancel();
   handle.wait();
   EXPECT_TRUE(handle.cancelled());
-  EXPECT_GE(steps.load(), 0);
+  EXPECT_TRUE(saw) << "the running job never saw its cancellation";
+  EXPECT_GE(steps.load(), 1);
 }
 
+// Cancelled while it runs (after it started, before it reads its token): the job reads the flag set.
 TEST(JobSystem, TheTokenFlagFollowsTheHandle) {
   JobSystem jobs;
   Gate gate;
+  std::promise<void> started;
   std::atomic<bool> seen{false};
   const JobHandle handle = jobs.submit(Priority::streaming, "flag", [&](const CancelToken& cancel) {
+    started.set_value();
     gate.pass();
     seen = cancel.flag()->load();
   });
+  started.get_future().wait();
   handle.cancel();
   gate.open();
   handle.wait();
-  // The job may have been skipped before it started (then `seen` stays false) or seen the flag.
   EXPECT_TRUE(handle.cancelled());
+  EXPECT_TRUE(seen) << "the job's token did not follow its handle's cancel";
 }
 
 TEST(JobSystem, AJobCancelledBeforeItStartsIsSkipped) {

@@ -55,9 +55,21 @@ TEST(NodeCache, TheBudgetEvictsLeastRecentlyUsed) {
   EXPECT_EQ(cache.stats().misses, misses);
 }
 
+// Four threads read every node three times through a cache too small to keep them all (loads,
+// evictions and hits interleave); each must see exactly the points a direct load gives.
 TEST(NodeCache, ConcurrentReadersSeeTheFileContents) {
   test::TempDirectory dir;
   const auto octree = Octree::open(buildCloud(dir));
+  std::vector<NodePoints> expected;
+  for (const NodeInfo& node : octree->nodes()) expected.push_back(octree->load(node));
+  const auto same = [](const NodePoints& a, const NodePoints& b) {
+    if (a.key != b.key || a.origin != b.origin || a.points.size() != b.points.size()) return false;
+    for (std::size_t i = 0; i < a.points.size(); ++i) {
+      const PackedPoint &p = a.points[i], &q = b.points[i];
+      if (p.x != q.x || p.y != q.y || p.z != q.z || p.rgb != q.rgb || p.intensity != q.intensity) return false;
+    }
+    return true;
+  };
   NodeCache cache(octree, 1 << 20);
   std::vector<std::thread> threads;
   std::atomic<int> mismatches{0};
@@ -65,15 +77,15 @@ TEST(NodeCache, ConcurrentReadersSeeTheFileContents) {
     threads.emplace_back([&, t] {
       for (int round = 0; round < 3; ++round) {
         for (std::size_t i = static_cast<std::size_t>(t); i < octree->nodes().size(); i += 2) {
-          const NodeInfo& node = octree->nodes()[i];
-          const auto cached = cache.get(node.key);
-          if (cached->size() != node.point_count || cached->key != node.key) ++mismatches;
+          const auto cached = cache.get(octree->nodes()[i].key);
+          if (!cached || !same(*cached, expected[i])) ++mismatches;
         }
       }
     });
   }
   for (auto& thread : threads) thread.join();
   EXPECT_EQ(mismatches.load(), 0);
+  EXPECT_GT(cache.stats().evictions, 0u) << "the budget must be too small for the cloud, or nothing interleaves";
 }
 
 TEST(NodeCache, BackgroundLoadsAreJoinedNotRepeated) {

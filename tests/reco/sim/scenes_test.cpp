@@ -99,6 +99,20 @@ TEST(Scenes, UnknownNameIsAnError) {
   EXPECT_THROW(makeScene("castle"), Error);
 }
 
+// A turn of 30 degrees about z (counter-clockwise seen from above), then the offset: checked on
+// its own, since planes and points turned by no angle at all would stay consistent too.
+TEST(SceneFrame, TurnsAboutTheVerticalThenOffsets) {
+  const SceneFrame frame{30.0, {512000, 5403000, 250}};
+  const Eigen::Vector3d world = frame.toWorld({1.0, 0.0, 2.0});
+  EXPECT_NEAR(world.x() - 512000, std::sqrt(3.0) / 2.0, 1e-9);
+  EXPECT_NEAR(world.y() - 5403000, 0.5, 1e-9);
+  EXPECT_NEAR(world.z() - 250, 2.0, 1e-9);
+  const TruthPlane wall = frame.toWorld(TruthPlane{.id = 0, .name = "x = 1", .normal = {1.0, 0.0, 0.0}, .offset = -1.0});
+  EXPECT_NEAR(wall.normal.x(), std::sqrt(3.0) / 2.0, 1e-12);
+  EXPECT_NEAR(wall.normal.y(), 0.5, 1e-12);
+  EXPECT_NEAR(wall.normal.dot(world) + wall.offset, 0.0, 1e-8) << "the turned point lies on the turned plane x = 1";
+}
+
 TEST(SceneFrame, RotatesPlanesAndPointsConsistently) {
   const SceneFrame frame{30.0, {512000, 5403000, 250}};
   const Scene room = roomScene();

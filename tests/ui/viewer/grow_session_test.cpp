@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <future>
+
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "tests/support/generated_cloud.h"
@@ -84,16 +86,28 @@ TEST_F(GrowSessionTest, ANewerStartDropsTheOlderGrowsSnapshots) {
   EXPECT_TRUE(updates.back().final);
 }
 
+// The only worker is held while the grow is started and cancelled, so its job runs with the cancel
+// already set: the final update must say cancelled (a grow that ignored the cancel would converge).
 TEST_F(GrowSessionTest, CancelEndsTheGrowWithACancelledFinalUpdate) {
+  jobs::JobSystem one_worker(jobs::JobSystemOptions{1});
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  one_worker.submit(jobs::Priority::interactive, "hold the worker", [released](const jobs::CancelToken&) {
+    released.wait();
+  });
   std::optional<GrowUpdate> last;
-  GrowSession session(jobs_, cache_, [&](const GrowUpdate& update) { last = update; });
+  GrowSession session(one_worker, cache_, [&](const GrowUpdate& update) { last = update; });
   session.start(parametersAt({512000.2, 5403001.0, 250.2}));
   session.cancel();
-  runToTheEnd(session);
+  release.set_value();
+  while (session.busy()) {
+    one_worker.waitIdle();
+    one_worker.drainContinuations();
+  }
   ASSERT_TRUE(last);
   EXPECT_TRUE(last->final);
-  // Cancelled before its first cell or between two: the grow says so, unless it had converged.
-  EXPECT_TRUE(last->snapshot.cancelled || last->snapshot.converged);
+  EXPECT_TRUE(last->snapshot.cancelled);
+  EXPECT_FALSE(last->snapshot.converged);
 }
 
 }  // namespace

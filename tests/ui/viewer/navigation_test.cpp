@@ -7,6 +7,8 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "engine/view/camera_controls.h"
 
 namespace plumb::viewer {
@@ -41,7 +43,16 @@ TEST(Navigator, OpensOnAnIsoViewOfTheBounds) {
     ASSERT_TRUE(pixel);
     EXPECT_GE(pixel->x(), 0.0);
     EXPECT_LE(pixel->x(), 640.0);
+    EXPECT_GE(pixel->y(), 0.0);
+    EXPECT_LE(pixel->y(), 360.0);
   }
+  // An iso view: from above, looking down at the box's centre along a diagonal.
+  const Eigen::Vector3d centre = 0.5 * (kMin + kMax);
+  EXPECT_LT((camera.target - centre).norm(), 1e-6 * (kMax - kMin).norm());
+  const Eigen::Vector3d view = (camera.target - camera.position).normalized();
+  EXPECT_LT(view.z(), -0.3) << "looking down";
+  EXPECT_GT(std::abs(view.x()), 0.3);
+  EXPECT_GT(std::abs(view.y()), 0.3);
 }
 
 TEST(Navigator, APressAndReleaseInPlaceIsAClickForTheTool) {
@@ -129,7 +140,7 @@ TEST(Navigator, ADoubleClickFocusesOnThePoint) {
   const Eigen::Vector3d point = kMin + Eigen::Vector3d(3.0, 2.0, 1.0);
   const PickAt picks_point = [&](double, double) { return std::optional<Eigen::Vector3d>(point); };
   const double distance_before = (navigator.camera().position - point).norm();
-  EXPECT_TRUE(navigator.handle(button(320, 180, true), picks_point) || true);
+  EXPECT_FALSE(navigator.handle(button(320, 180, true), picks_point)) << "a press is no click yet";
   EXPECT_TRUE(navigator.handle(button(320, 180, false), picks_point));  // the first click goes to the tool
   navigator.update(0.1);
   navigator.handle(button(320, 180, true), picks_point);
