@@ -13,8 +13,13 @@
 //      (already 16-bit in LAS). Bytes beyond the format's standard size ("extra bytes") are
 //      skipped; whatever follows the last declared record (EVLRs in 1.4, waveform data, LAZ's
 //      chunk table) is not point data and is never read as points.
+//   3. LAZ with a chunk table of several chunks: decoded a few chunks ahead on oneTBB's workers
+//      (laz_chunk_window.h), the same records in the same order, the same errors at the same
+//      record; without a table or with one chunk, as the records are read.
 
 #include "engine/io/las_reader.h"
+
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cassert>
@@ -22,6 +27,7 @@
 
 #include "engine/io/file_source.h"
 #include "engine/io/las_header.h"
+#include "engine/io/laz_chunk_window.h"
 #include "engine/io/laz_point_decompressor.h"
 #include "engine/io/point_reader.h"
 
@@ -47,8 +53,8 @@ std::vector<std::string> ignoredFields(std::uint8_t format, const LasFormatLayou
 
 class LasReader final : public LasPointReader {
  public:
-  explicit LasReader(const std::string& path) : LasPointReader(path), source_(path) {
-    readHeader();
+  LasReader(const std::string& path, const LasReadOptions& options) : LasPointReader(path), source_(path) {
+    readHeader(options);
     source_.seek(header_.point_offset);
     chunk_records_ = std::max<std::size_t>(1, kChunkBytes / header_.record_length);
   }
@@ -73,7 +79,9 @@ class LasReader final : public LasPointReader {
     const auto count =
         static_cast<std::size_t>(std::min<std::uint64_t>(max_records, header_.point_count - next_record_));
     records.resize(count * header_.record_length);
-    if (laz_) {
+    if (window_) {
+      window_->decode(records);
+    } else if (laz_) {
       laz_->decode(records);
     } else {
       source_.readExactly(records, "the point records");
@@ -83,7 +91,7 @@ class LasReader final : public LasPointReader {
   }
 
  private:
-  void readHeader();
+  void readHeader(const LasReadOptions& options);
 
   FileSource source_;
   LasHeader header_;
@@ -91,13 +99,30 @@ class LasReader final : public LasPointReader {
   std::size_t chunk_records_ = 1;
   std::vector<std::byte> records_;
   std::unique_ptr<LazPointDecompressor> laz_;  // LAZ only; reads through source_
+  std::unique_ptr<LazChunkWindow> window_;     // LAZ decoded in parallel, in place of laz_
 };
 
-void LasReader::readHeader() {
+// Several chunks in flight when asked and worth it: a table (else a chunk's start is only known
+// once the previous one is decoded), two chunks or more, none too large to buffer.
+std::size_t chunksInFlight(const LasReadOptions& options, const LazChunkTable& table, std::size_t record_length) {
+  if (!table.present || table.chunks.size() < 2) return 1;
+  for (const LazChunk& chunk : table.chunks) {
+    if (chunk.points > LazChunkWindow::kMaxChunkBytes / record_length) return 1;
+  }
+  if (options.laz_chunks_in_flight != 0) return options.laz_chunks_in_flight;
+  return 2 * static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
+}
+
+void LasReader::readHeader(const LasReadOptions& options) {
   header_ = readLasHeader(source_);
   if (header_.compressed()) {
     laz_ = std::make_unique<LazPointDecompressor>(source_, *header_.laszip, header_.point_offset,
                                                   header_.compressed_end, header_.record_length, header_.point_count);
+    if (const std::size_t in_flight = chunksInFlight(options, laz_->table(), header_.record_length); in_flight > 1) {
+      window_ = std::make_unique<LazChunkWindow>(source_.path(), *header_.laszip, laz_->table(), header_.record_length,
+                                                 in_flight);
+      laz_.reset();
+    }
   }
   info_.format = std::string(header_.compressed() ? "LAZ " : "LAS ") + header_.version() + " point format " +
                  std::to_string(header_.format);
@@ -111,11 +136,11 @@ void LasReader::readHeader() {
 }  // namespace
 
 std::unique_ptr<PointReader> openLas(const std::string& path) {
-  return std::make_unique<LasReader>(path);
+  return std::make_unique<LasReader>(path, LasReadOptions{});
 }
 
-std::unique_ptr<LasPointReader> openLasRecords(const std::string& path) {
-  return std::make_unique<LasReader>(path);
+std::unique_ptr<LasPointReader> openLasRecords(const std::string& path, const LasReadOptions& options) {
+  return std::make_unique<LasReader>(path, options);
 }
 
 }  // namespace plumb::io

@@ -3,7 +3,7 @@
 // the file stores them (LAZ: decompressed to the same bytes), for callers that need fields Plumb
 // does not keep (GPS time, classification, extra bytes) and for tests that compare LAZ with LAS.
 //
-// Not thread-safe: one thread reads one reader.
+// Not thread-safe: one thread reads one reader (which may decode LAZ chunks on oneTBB's workers).
 
 #include <cstddef>
 #include <cstdint>
@@ -29,7 +29,14 @@ class LasPointReader : public PointReader {
   using PointReader::PointReader;
 };
 
+struct LasReadOptions {
+  // LAZ with a chunk table of two or more chunks: how many chunks are decoded ahead at once, as
+  // oneTBB tasks of the calling thread's arena (laz_chunk_window.h); 0: twice the arena's threads;
+  // 1: none, the reading thread decodes as it reads. The records are the same either way.
+  std::size_t laz_chunks_in_flight = 0;
+};
+
 // Opens a LAS or LAZ file (throws plumb::Error as openLas does).
-std::unique_ptr<LasPointReader> openLasRecords(const std::string& path);
+std::unique_ptr<LasPointReader> openLasRecords(const std::string& path, const LasReadOptions& options = {});
 
 }  // namespace plumb::io

@@ -31,7 +31,7 @@ LazPointDecompressor::LazPointDecompressor(FileSource& source, const LaszipVlr& 
 }
 
 LazPointDecompressor::LazPointDecompressor(FileSource& source, const LaszipVlr& vlr, LazChunkTable table,
-                                           std::size_t record_length)
+                                           std::size_t record_length, std::size_t first_number, std::size_t file_chunks)
     : source_(source),
       input_(source),
       decoder_(input_),
@@ -42,7 +42,9 @@ LazPointDecompressor::LazPointDecompressor(FileSource& source, const LaszipVlr& 
       record_length_(record_length),
       point_count_(0),
       layered_(vlr.compressor == LazCompressor::kLayeredChunked),
-      table_(std::move(table)) {
+      table_(std::move(table)),
+      first_number_(first_number),
+      file_chunks_(file_chunks) {
   assert((vlr.compressor == LazCompressor::kPointwiseChunked || layered_) && "chunks are read from chunked LAZ only");
   assert(table_.present && "pass the chunks to decode");
   makeItems(vlr);
@@ -85,7 +87,8 @@ void LazPointDecompressor::startChunk(std::byte* record) {
     assert(chunk_ < table_.chunks.size() && "the chunk table covers the declared points");
     const LazChunk& chunk = table_.chunks[chunk_];
     input_.reset(chunk.offset, chunk.offset + chunk.bytes,
-                 "chunk " + std::to_string(chunk_ + 1) + " of " + std::to_string(table_.chunks.size()) + " (" +
+                 "chunk " + std::to_string(first_number_ + chunk_ + 1) + " of " +
+                     std::to_string(file_chunks_ != 0 ? file_chunks_ : table_.chunks.size()) + " (" +
                      std::to_string(chunk.points) + " points in " + std::to_string(chunk.bytes) + " bytes from byte " +
                      std::to_string(chunk.offset) + ")");
     left_in_chunk_ = chunk.points;
@@ -161,7 +164,8 @@ void LazPointDecompressor::decode(std::span<std::byte> records) {
     } else if (layered_) {
       // The context starts at 0 for every point: POINT14 v3 sets it only when the channel switches.
       unsigned context = 0;
-      for (std::size_t i = 0; i < layered_items_.size(); ++i) layered_items_[i]->decode(record + item_offsets_[i], context);
+      for (std::size_t i = 0; i < layered_items_.size(); ++i)
+        layered_items_[i]->decode(record + item_offsets_[i], context);
     } else {
       for (std::size_t i = 0; i < items_.size(); ++i) items_[i]->decode(decoder_, record + item_offsets_[i]);
     }

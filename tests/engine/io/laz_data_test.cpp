@@ -416,6 +416,39 @@ TEST_F(LazEdited, ATruncatedChunkStopsWhereItsBytesEnd) {
   EXPECT_NE(message.find("truncated or corrupt LAZ data: chunk 2"), std::string::npos) << message;
 }
 
+TEST_F(LazEdited, ATruncatedChunkInParallelStopsAsTheSequentialDecoder) {
+  // The table kept, chunk 2 cut to half its bytes (chunk 3 then starts inside it): chunk 2 fails
+  // when its bytes end, after the 50 000 records of chunk 1 and those of chunk 2 before the failure,
+  // with the same message however many chunks are in flight.
+  const std::vector<LazChunk> listed = chunks();
+  ASSERT_EQ(listed.size(), 3u);
+  const auto half = static_cast<std::uint32_t>(listed[1].bytes / 2);
+  const auto first = static_cast<std::uint32_t>(listed[0].bytes);
+  const auto last = static_cast<std::uint32_t>(listed[2].bytes);
+  const std::string path = write(withVariableTable({50'000, 50'000, 10'000}, {first, half, last}));
+  const auto outcome = [&](std::size_t in_flight) {
+    auto reader = openLasRecords(path, LasReadOptions{.laz_chunks_in_flight = in_flight});
+    std::size_t handed = 0;
+    std::vector<std::byte> some;
+    try {
+      while (const std::size_t n = reader->readRecords(some, 1'000)) handed += n;
+    } catch (const Error& error) {
+      return std::pair(handed, std::string(error.what()));
+    }
+    return std::pair(handed, std::string());
+  };
+  const auto [sequential_handed, sequential_error] = outcome(1);
+  EXPECT_GT(sequential_handed, 50'000u);
+  EXPECT_LT(sequential_handed, 100'000u);
+  EXPECT_NE(sequential_error.find("at byte " + std::to_string(listed[1].offset + half)), std::string::npos)
+      << sequential_error;
+  EXPECT_NE(sequential_error.find("truncated or corrupt LAZ data: chunk 2 of 3"), std::string::npos)
+      << sequential_error;
+  for (const std::size_t in_flight : {std::size_t{0}, std::size_t{2}, std::size_t{3}}) {
+    EXPECT_EQ(outcome(in_flight), std::pair(sequential_handed, sequential_error)) << in_flight << " in flight";
+  }
+}
+
 TEST_F(LazEdited, CorruptChunksEndInAnErrorOrInOtherPoints) {
   // Garbage in the middle of chunk 2: the decoder must never crash or read outside its chunk
   // (ASan and UBSan builds run this too); it either runs out of the chunk's bytes or decodes other
