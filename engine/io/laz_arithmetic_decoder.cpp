@@ -7,17 +7,15 @@
 namespace plumb::io {
 namespace {
 
-// The interval is renormalised when its length drops below 2^24 (one byte of precision left).
-constexpr std::uint32_t kMinLength = 0x01000000u;
 constexpr std::uint32_t kMaxLength = 0xFFFFFFFFu;
 
-// Bit models: the probability of 0 in 13 bits; counts are halved beyond 2^13.
-constexpr unsigned kBitLengthShift = 13;
+// Bit models: the probability of 0 in 13 bits (kBitLengthShift); counts are halved beyond 2^13.
+constexpr unsigned kBitLengthShift = LazArithmeticDecoder::kBitLengthShift;
 constexpr std::uint32_t kBitMaxCount = 1u << kBitLengthShift;
 constexpr std::uint32_t kBitMaxUpdateCycle = 64;
 
-// Symbol models: the distribution in 15 bits; counts are halved beyond 2^15.
-constexpr unsigned kSymbolLengthShift = 15;
+// Symbol models: the distribution in 15 bits (kSymbolLengthShift); counts are halved beyond 2^15.
+constexpr unsigned kSymbolLengthShift = LazArithmeticDecoder::kSymbolLengthShift;
 constexpr std::uint32_t kSymbolMaxCount = 1u << kSymbolLengthShift;
 constexpr std::uint32_t kMaxSymbols = 1u << 11;
 constexpr std::uint32_t kSymbolsWithoutTable = 16;
@@ -150,83 +148,6 @@ void LazArithmeticDecoder::start() {
   length_ = kMaxLength;
   value_ = 0;
   for (int i = 0; i < 4; ++i) value_ = (value_ << 8) | input_.next();
-}
-
-void LazArithmeticDecoder::renormalise() {
-  do {
-    value_ = (value_ << 8) | input_.next();
-    length_ <<= 8;
-  } while (length_ < kMinLength);
-}
-
-std::uint32_t LazArithmeticDecoder::decodeBit(LazBitModel& model) {
-  const std::uint32_t bound = model.bit_0_probability_ * (length_ >> kBitLengthShift);
-  std::uint32_t bit = 0;
-  if (value_ < bound) {
-    length_ = bound;
-    ++model.bit_0_count_;
-  } else {
-    bit = 1;
-    value_ -= bound;
-    length_ -= bound;
-  }
-  if (length_ < kMinLength) renormalise();
-  if (--model.until_update_ == 0) model.update();
-  return bit;
-}
-
-std::uint32_t LazArithmeticDecoder::decodeSymbol(LazSymbolModel& model) {
-  std::uint32_t symbol = 0;
-  std::uint32_t low = 0;         // the symbol's interval start, scaled
-  std::uint32_t high = length_;  // its end (the whole length for the last symbol)
-  length_ >>= kSymbolLengthShift;
-  if (model.table_size_ != 0) {
-    const std::uint32_t target = value_ / length_;
-    // Within the table for any valid stream (value_ < the old length); the clamp only keeps a
-    // corrupt stream inside the array.
-    const std::uint32_t slice = std::min(target >> model.table_shift_, model.table_size_);
-    symbol = model.table_[slice];
-    std::uint32_t above = model.table_[slice + 1] + 1;
-    while (above > symbol + 1) {
-      const std::uint32_t middle = (symbol + above) >> 1;
-      if (model.distribution_[middle] > target) {
-        above = middle;
-      } else {
-        symbol = middle;
-      }
-    }
-    low = model.distribution_[symbol] * length_;
-    if (symbol != model.last_symbol_) high = model.distribution_[symbol + 1] * length_;
-  } else {
-    // Few symbols: bisect on the products directly.
-    std::uint32_t above = model.symbols_;
-    std::uint32_t middle = above >> 1;
-    do {
-      const std::uint32_t product = length_ * model.distribution_[middle];
-      if (product > value_) {
-        above = middle;
-        high = product;
-      } else {
-        symbol = middle;
-        low = product;
-      }
-      middle = (symbol + above) >> 1;
-    } while (middle != symbol);
-  }
-  value_ -= low;
-  length_ = high - low;
-  if (length_ < kMinLength) renormalise();
-  ++model.counts_[symbol];
-  if (--model.until_update_ == 0) model.update();
-  return symbol;
-}
-
-std::uint32_t LazArithmeticDecoder::readUpTo19Bits(unsigned bits) {
-  length_ >>= bits;
-  const std::uint32_t symbol = value_ / length_;
-  value_ -= length_ * symbol;
-  if (length_ < kMinLength) renormalise();
-  return symbol;
 }
 
 std::uint32_t LazArithmeticDecoder::readBits(unsigned bits) {

@@ -20,6 +20,7 @@
 // Corrupt input never reads outside the models' arrays: it decodes garbage until the chunk's
 // bytes run out, and LazByteInput then throws plumb::Error with the file and the byte offset.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -110,6 +111,7 @@ class LazArithmeticDecoder {
   // Reads the first 4 bytes (the initial code point).
   void start();
 
+  // Inline, below: the decoding of every field of every point goes through these.
   std::uint32_t decodeBit(LazBitModel& model);
   std::uint32_t decodeSymbol(LazSymbolModel& model);  // < model.symbols()
 
@@ -120,6 +122,11 @@ class LazArithmeticDecoder {
   std::uint32_t readInt();    // two readShort(), low half first
   std::uint64_t readInt64();  // two readInt(), low half first
 
+  // The interval is renormalised when its length drops below 2^24 (one byte of precision left).
+  static constexpr std::uint32_t kMinLength = 0x01000000u;
+  static constexpr unsigned kBitLengthShift = 13;     // bit models' probabilities
+  static constexpr unsigned kSymbolLengthShift = 15;  // symbol models' distributions
+
  private:
   std::uint32_t readUpTo19Bits(unsigned bits);
   void renormalise();
@@ -128,5 +135,91 @@ class LazArithmeticDecoder {
   std::uint32_t value_ = 0;
   std::uint32_t length_ = 0;
 };
+
+// ---- The hot paths, inline --------------------------------------------------------------------
+// The state lives in locals while a symbol is decoded: the models' stores (uint32_t, like the
+// state) would otherwise force the compiler to reload it after each.
+
+inline void LazArithmeticDecoder::renormalise() {
+  std::uint32_t value = value_, length = length_;
+  do {
+    value = (value << 8) | input_.next();
+    length <<= 8;
+  } while (length < kMinLength);
+  value_ = value;
+  length_ = length;
+}
+
+inline std::uint32_t LazArithmeticDecoder::decodeBit(LazBitModel& model) {
+  const std::uint32_t bound = model.bit_0_probability_ * (length_ >> kBitLengthShift);
+  std::uint32_t bit = 0;
+  if (value_ < bound) {
+    length_ = bound;
+    ++model.bit_0_count_;
+  } else {
+    bit = 1;
+    value_ -= bound;
+    length_ -= bound;
+  }
+  if (length_ < kMinLength) renormalise();
+  if (--model.until_update_ == 0) model.update();
+  return bit;
+}
+
+inline std::uint32_t LazArithmeticDecoder::decodeSymbol(LazSymbolModel& model) {
+  const std::uint32_t* const distribution = model.distribution_.data();
+  const std::uint32_t value = value_;
+  const std::uint32_t length = length_ >> kSymbolLengthShift;
+  std::uint32_t symbol = 0;
+  std::uint32_t low = 0;         // the symbol's interval start, scaled
+  std::uint32_t high = length_;  // its end (the whole length for the last symbol)
+  if (model.table_size_ != 0) {
+    const std::uint32_t target = value / length;
+    // Within the table for any valid stream (value < the old length); the clamp only keeps a
+    // corrupt stream inside the array.
+    const std::uint32_t slice = std::min(target >> model.table_shift_, model.table_size_);
+    symbol = model.table_[slice];
+    std::uint32_t above = model.table_[slice + 1] + 1;
+    while (above > symbol + 1) {
+      const std::uint32_t middle = (symbol + above) >> 1;
+      if (distribution[middle] > target) {
+        above = middle;
+      } else {
+        symbol = middle;
+      }
+    }
+    low = distribution[symbol] * length;
+    if (symbol != model.last_symbol_) high = distribution[symbol + 1] * length;
+  } else {
+    // Few symbols: bisect on the products directly.
+    std::uint32_t above = model.symbols_;
+    std::uint32_t middle = above >> 1;
+    do {
+      const std::uint32_t product = length * distribution[middle];
+      if (product > value) {
+        above = middle;
+        high = product;
+      } else {
+        symbol = middle;
+        low = product;
+      }
+      middle = (symbol + above) >> 1;
+    } while (middle != symbol);
+  }
+  value_ = value - low;
+  length_ = high - low;
+  if (length_ < kMinLength) renormalise();
+  ++model.counts_[symbol];
+  if (--model.until_update_ == 0) model.update();
+  return symbol;
+}
+
+inline std::uint32_t LazArithmeticDecoder::readUpTo19Bits(unsigned bits) {
+  length_ >>= bits;
+  const std::uint32_t symbol = value_ / length_;
+  value_ -= length_ * symbol;
+  if (length_ < kMinLength) renormalise();
+  return symbol;
+}
 
 }  // namespace plumb::io
