@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <chrono>
 #include <cstring>
 #include <iostream>
 #include <random>
@@ -648,45 +647,6 @@ TEST_F(LazEditedLayered, UnknownVersionsAndWaveformItemsAreNamed) {
     const std::string message = errorOf(file);
     EXPECT_NE(message.find("are not the records of point format 6 with 36 bytes"), std::string::npos) << message;
   }
-}
-
-// ---- Speed -----------------------------------------------------------------------------------
-
-TEST(LazData, DecodingSpeedIsPrinted) {
-  // A figure for the log, never asserted (tests do not time): Release, one thread.
-  PLUMB_REQUIRE_FORMAT_FILE(path, "laz/autzen_trim.laz");
-  double best_s = 1e9;
-  std::size_t points = 0;
-  for (int pass = 0; pass < 3; ++pass) {
-    const auto start = std::chrono::steady_clock::now();
-    auto reader = openLasRecords(path);
-    std::vector<std::byte> records;
-    points = 0;
-    while (const std::size_t n = reader->readRecords(records, 65'536)) points += n;
-    best_s = std::min(best_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  EXPECT_EQ(points, 110'000u);
-  std::cout << "LAZ decoding (autzen_trim.laz, point format 3): " << points << " points in " << best_s * 1e3 << " ms, "
-            << static_cast<double>(points) / best_s / 1e6 << " million points per second\n";
-}
-
-TEST(LazData, LayeredDecodingSpeedIsPrinted) {
-  // A figure for the log, never asserted: Release, one thread, 697 721 points of format 8.
-  PLUMB_REQUIRE_FORMAT_FILE(path, "laz/las_with_several_extra_byte_bloc.laz");
-  double best_s = 1e9;
-  std::size_t points = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    const auto start = std::chrono::steady_clock::now();
-    auto reader = openLasRecords(path);
-    std::vector<std::byte> records;
-    points = 0;
-    while (const std::size_t n = reader->readRecords(records, 65'536)) points += n;
-    best_s = std::min(best_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  EXPECT_EQ(points, 697'721u);
-  std::cout << "Layered LAZ decoding (las_with_several_extra_byte_bloc.laz, point format 8): " << points
-            << " points in " << best_s * 1e3 << " ms, " << static_cast<double>(points) / best_s / 1e6
-            << " million points per second\n";
 }
 
 }  // namespace
