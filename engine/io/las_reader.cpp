@@ -34,6 +34,9 @@
 namespace plumb::io {
 namespace {
 
+// LAZ files of fewer points decode on the reading thread unless LasReadOptions asks otherwise.
+constexpr std::uint64_t kMinParallelPoints = std::uint64_t{1} << 16;
+
 // Read chunk: enough records to amortise the calls, bounded in bytes whatever the record length.
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 
@@ -110,6 +113,11 @@ std::size_t chunksInFlight(const LasReadOptions& options, const LazChunkTable& t
     if (chunk.points > LazChunkWindow::kMaxChunkBytes / record_length) return 1;
   }
   if (options.laz_chunks_in_flight != 0) return options.laz_chunks_in_flight;
+  // A small file decodes in about a millisecond: a file handle and fresh models per chunk, and the
+  // hand-over between threads, would cost more than they save.
+  std::uint64_t points = 0;
+  for (const LazChunk& chunk : table.chunks) points += chunk.points;
+  if (points < kMinParallelPoints) return 1;
   return 2 * static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
 }
 

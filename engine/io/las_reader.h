@@ -31,8 +31,9 @@ class LasPointReader : public PointReader {
 
 struct LasReadOptions {
   // LAZ with a chunk table of two or more chunks: how many chunks are decoded ahead at once, as
-  // oneTBB tasks of the calling thread's arena (laz_chunk_window.h); 0: twice the arena's threads;
-  // 1: none, the reading thread decodes as it reads. The records are the same either way.
+  // oneTBB tasks of the calling thread's arena (laz_chunk_window.h); 0: twice the arena's threads
+  // for files of 2^16 points or more, else none; 1: none, the reading thread decodes as it reads.
+  // The records, and the errors, are the same either way.
   std::size_t laz_chunks_in_flight = 0;
 };
 
