@@ -7,6 +7,7 @@
 #include <cstring>
 #include <utility>
 
+#include "engine/core/tsan_handover.h"
 #include "engine/io/file_source.h"
 #include "engine/io/laz_point_decompressor.h"
 
@@ -14,6 +15,16 @@ namespace plumb::io {
 
 struct LazChunkWindow::Tasks {
   tbb::task_group group;
+};
+
+// A named task rather than a lambda, so that ThreadSanitizer's suppressions can name the read of
+// its member, which oneTBB hands over unseen (tests/engine/jobs/tsan.supp).
+struct LazChunkWindow::RunQueuedTask {
+  LazChunkWindow* window;
+  void operator()() const {
+    PLUMB_TSAN_ACQUIRE(window);
+    window->runQueued();
+  }
 };
 
 LazChunkWindow::LazChunkWindow(std::string path, const LaszipVlr& vlr, LazChunkTable table, std::size_t record_length,
@@ -52,7 +63,8 @@ void LazChunkWindow::fillLocked() {
     window_bytes_ += chunkBytes(chunk.index);
     // The task takes the oldest queued chunk when it runs, not this one: the chunk travels under
     // the mutex (which ThreadSanitizer sees), and the caller may have decoded it meanwhile.
-    tasks_->group.run([this] { runQueued(); });
+    PLUMB_TSAN_RELEASE(this);
+    tasks_->group.run(RunQueuedTask{this});
   }
 }
 

@@ -70,6 +70,7 @@ class LazChunkWindow {
     std::exception_ptr error;  // the decoder's failure after `good` records
   };
   struct Tasks;  // the oneTBB task group, kept out of this header
+  struct RunQueuedTask;
 
   void fillLocked();
   Chunk& oldestDecoded();

@@ -8,17 +8,9 @@
 #include <cassert>
 #include <thread>
 
-// Debian's libtbb is not built for ThreadSanitizer, so it cannot see that what the submitting
-// thread wrote happens before the worker runs the task. Tell it: release in submit(), acquire
-// when the task starts.
-#if defined(__SANITIZE_THREAD__)
-#include <sanitizer/tsan_interface.h>
-#define PLUMB_TSAN_RELEASE(address) __tsan_release(address)
-#define PLUMB_TSAN_ACQUIRE(address) __tsan_acquire(address)
-#else
-#define PLUMB_TSAN_RELEASE(address) static_cast<void>(address)
-#define PLUMB_TSAN_ACQUIRE(address) static_cast<void>(address)
-#endif
+#include "engine/core/tsan_handover.h"
+
+// submit() releases, the task acquires when it starts (engine/core/tsan_handover.h).
 
 namespace plumb::jobs {
 
