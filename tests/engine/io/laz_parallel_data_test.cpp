@@ -56,10 +56,10 @@ TEST(LazParallelData, ChunksInParallelGiveTheSequentialRecordsOnEveryReferenceFi
     const std::string path = test::sharedFormatFile(file);
     if (path.empty()) continue;  // absent reference files are skipped one by one
     const std::vector<std::byte> sequential = recordsOf(path, 1, 65'536);
-    for (const int threads : {1, 2, 6}) {
+    for (const int threads : {1, 3}) {
       tbb::task_arena arena(threads);
       arena.execute([&] {
-        for (const std::size_t in_flight : {std::size_t{0}, std::size_t{2}, std::size_t{5}}) {
+        for (const std::size_t in_flight : {std::size_t{2}, std::size_t{5}}) {
           SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(in_flight) + " chunks in flight");
           EXPECT_TRUE(recordsOf(path, in_flight, 7'777) == sequential);
         }
