@@ -51,16 +51,20 @@ std::size_t LazChunkWindow::chunkBytes(std::size_t index) const {
   return static_cast<std::size_t>(table_.chunks[index].points) * record_length_;
 }
 
+std::size_t LazChunkWindow::heldBytes(std::size_t index) const {
+  // A chunk takes the spare buffer, which may be larger than it needs.
+  return std::max(chunkBytes(index), spare_.capacity());
+}
+
 void LazChunkWindow::fillLocked() {
   while (next_chunk_ < table_.chunks.size() && window_.size() < chunks_in_flight_ &&
-         (window_.empty() || window_bytes_ + chunkBytes(next_chunk_) <= kWindowBytes)) {
+         (window_.empty() || window_bytes_ + heldBytes(next_chunk_) <= kWindowBytes)) {
     Chunk& chunk = window_.emplace_back();
     chunk.index = next_chunk_++;
-    if (!spare_.empty()) {
-      chunk.records = std::move(spare_.back());
-      spare_.pop_back();
-    }
-    window_bytes_ += chunkBytes(chunk.index);
+    chunk.held = heldBytes(chunk.index);
+    chunk.records = std::move(spare_);
+    spare_ = {};
+    window_bytes_ += chunk.held;
     // The task takes the oldest queued chunk when it runs, not this one: the chunk travels under
     // the mutex (which ThreadSanitizer sees), and the caller may have decoded it meanwhile.
     PLUMB_TSAN_RELEASE(this);
@@ -140,8 +144,8 @@ void LazChunkWindow::decode(std::span<std::byte> records) {
     if (out < count && chunk.error) std::rethrow_exception(chunk.error);
     if (chunk.error) continue;
     const std::lock_guard lock(mutex_);
-    window_bytes_ -= chunkBytes(chunk.index);
-    spare_.push_back(std::move(chunk.records));
+    window_bytes_ -= chunk.held;
+    spare_ = std::move(chunk.records);
     window_.pop_front();
   }
 }

@@ -19,9 +19,10 @@
 //      hands those out, then throws the exception exactly where the sequential decoder would (on
 //      the call that asks for the record that failed), never before the records of earlier chunks.
 //
-// Memory: at most kWindowBytes (64 MiB) of decoded records, or one chunk when a chunk is larger
-// (callers keep chunks above kMaxChunkBytes sequential), plus each chunk's models and a 64 KiB read
-// buffer while it is decoded. Not thread-safe: one thread calls decode(); the tasks only touch
+// Memory: chunk buffers of at most kWindowBytes (64 MiB) in the window, or one chunk's when a chunk
+// is larger (callers keep chunks above kMaxChunkBytes sequential), plus the buffer of the chunk
+// that left last, kept for the next to enter (no larger than the largest chunk), plus each chunk's
+// models and a 64 KiB read buffer while it is decoded. Not thread-safe: one thread calls decode(); the tasks only touch
 // their own chunk, and hand it back under the mutex. The destructor waits for running tasks.
 
 #include <condition_variable>
@@ -67,6 +68,7 @@ class LazChunkWindow {
     std::vector<std::byte> records;
     std::size_t good = 0;      // records decoded whole (all of them unless `error`)
     std::size_t handed = 0;    // records decode() has copied out
+    std::size_t held = 0;      // bytes of its buffer, counted against kWindowBytes
     std::exception_ptr error;  // the decoder's failure after `good` records
   };
   struct Tasks;  // the oneTBB task group, kept out of this header
@@ -77,6 +79,7 @@ class LazChunkWindow {
   void runQueued();
   void decodeChunk(Chunk& chunk) const;
   std::size_t chunkBytes(std::size_t index) const;
+  std::size_t heldBytes(std::size_t index) const;
 
   const std::string path_;
   const LaszipVlr vlr_;
@@ -84,13 +87,13 @@ class LazChunkWindow {
   const std::size_t record_length_;
   const std::size_t chunks_in_flight_;
 
-  std::mutex mutex_;                           // guards the chunks' states and the deque, stopping_
-  std::condition_variable done_;               // a chunk became done
-  std::deque<Chunk> window_;                   // in file order; references stay valid while a chunk is in it
-  std::size_t next_chunk_ = 0;                 // the next to enter the window
-  std::size_t window_bytes_ = 0;               // decoded records of the chunks in the window
-  bool stopping_ = false;                      // the destructor runs: queued tasks do nothing
-  std::vector<std::vector<std::byte>> spare_;  // buffers of chunks that left, reused
+  std::mutex mutex_;              // guards the chunks' states and the deque, stopping_
+  std::condition_variable done_;  // a chunk became done
+  std::deque<Chunk> window_;      // in file order; references stay valid while a chunk is in it
+  std::size_t next_chunk_ = 0;    // the next to enter the window
+  std::size_t window_bytes_ = 0;  // the chunks' buffers in the window (Chunk::held)
+  bool stopping_ = false;         // the destructor runs: queued tasks do nothing
+  std::vector<std::byte> spare_;  // the buffer of the chunk that left last, for the next to enter
   std::unique_ptr<Tasks> tasks_;
 };
 
