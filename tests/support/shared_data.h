@@ -1,7 +1,9 @@
 #pragma once
 // The real scans in ../shared/data/real (beside the repository, never inside it). Tests that
-// need one skip when it is absent: a user's fresh checkout has no ../shared; CI always has it.
+// need one skip when it is absent: a user's fresh checkout has no ../shared. CI always has it,
+// so there (CI=true) a missing file fails the test instead of skipping it quietly.
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -24,18 +26,33 @@ inline std::string sharedFormatFile(const std::string& name) {
   return std::filesystem::exists(path) ? path.string() : std::string();
 }
 
+// True where ../shared/data must be present: in CI (the environment's CI=true).
+inline bool sharedDataRequired() {
+  const char* ci = std::getenv("CI");
+  return ci != nullptr && std::string(ci) == "true";
+}
+
 }  // namespace plumb::test
 
-// Skips the current test unless `variable` names an existing reference file of ../shared/data/formats.
-#define PLUMB_REQUIRE_FORMAT_FILE(variable, name)                                             \
-  const std::string variable = ::plumb::test::sharedFormatFile(name);                         \
-  if (variable.empty())                                                                       \
-  GTEST_SKIP() << name << " not found in " << ::plumb::test::sharedDataDirectory().parent_path() \
-               << "/formats (../shared/data is beside the repository in CI)"
+// Ends the current test for a missing file of ../shared/data: a failure in CI, a skip elsewhere.
+// `message` is streamed (it may hold <<).
+#define PLUMB_SHARED_DATA_MISSING(message)                                                        \
+  do {                                                                                            \
+    if (::plumb::test::sharedDataRequired()) {                                                    \
+      GTEST_FAIL() << message << " (CI=true: ../shared/data must be beside the repository)";      \
+    }                                                                                             \
+    GTEST_SKIP() << message << " (../shared/data is beside the repository in CI)";                \
+  } while (false)
 
-// Skips the current test unless `variable` (a std::string) names an existing real scan.
-#define PLUMB_REQUIRE_SHARED_DATA(variable, name)                                  \
-  const std::string variable = ::plumb::test::sharedDataFile(name);                \
-  if (variable.empty())                                                            \
-  GTEST_SKIP() << name << " not found in " << ::plumb::test::sharedDataDirectory() \
-               << " (../shared/data is beside the repository in CI)"
+// Ends the current test (PLUMB_SHARED_DATA_MISSING) unless `variable` names an existing reference
+// file of ../shared/data/formats.
+#define PLUMB_REQUIRE_FORMAT_FILE(variable, name)                     \
+  const std::string variable = ::plumb::test::sharedFormatFile(name); \
+  if (variable.empty())                                               \
+  PLUMB_SHARED_DATA_MISSING(name << " not found in " << ::plumb::test::sharedDataDirectory().parent_path() << "/formats")
+
+// Ends the current test (PLUMB_SHARED_DATA_MISSING) unless `variable` (a std::string) names an
+// existing real scan.
+#define PLUMB_REQUIRE_SHARED_DATA(variable, name)                   \
+  const std::string variable = ::plumb::test::sharedDataFile(name); \
+  if (variable.empty()) PLUMB_SHARED_DATA_MISSING(name << " not found in " << ::plumb::test::sharedDataDirectory())

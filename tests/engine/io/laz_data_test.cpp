@@ -303,7 +303,7 @@ class LazEdited : public ::testing::Test {
   void SetUp() override {
     laz_path_ = test::sharedFormatFile("laz/autzen_trim.laz");
     las_path_ = test::sharedFormatFile("las/autzen_trim.las");
-    if (laz_path_.empty() || las_path_.empty()) GTEST_SKIP() << "laz/autzen_trim.laz or its LAS twin not found";
+    if (laz_path_.empty() || las_path_.empty()) PLUMB_SHARED_DATA_MISSING("laz/autzen_trim.laz or its LAS twin not found");
     file_ = test::readFile(laz_path_);
     point_offset_ = pointOffsetOf(file_);
     table_offset_ = get<std::uint64_t>(file_, point_offset_);
@@ -479,7 +479,7 @@ class LazEditedVlr : public ::testing::Test {
  protected:
   void SetUp() override {
     laz_path_ = test::sharedFormatFile("laz/simple.laz");
-    if (laz_path_.empty()) GTEST_SKIP() << "laz/simple.laz not found";
+    if (laz_path_.empty()) PLUMB_SHARED_DATA_MISSING("laz/simple.laz not found");
     file_ = test::readFile(laz_path_);
     payload_at_ = laszipPayloadAt(file_);
   }
@@ -558,7 +558,7 @@ class LazEditedLayered : public ::testing::Test {
  protected:
   void SetUp() override {
     laz_path_ = test::sharedFormatFile("laz/autzen-bmx-2010.laz");
-    if (laz_path_.empty()) GTEST_SKIP() << "laz/autzen-bmx-2010.laz not found";
+    if (laz_path_.empty()) PLUMB_SHARED_DATA_MISSING("laz/autzen-bmx-2010.laz not found");
     file_ = test::readFile(laz_path_);
     payload_at_ = laszipPayloadAt(file_);
     count_at_ = pointOffsetOf(file_) + 8 + 36;

@@ -179,7 +179,7 @@ class MalformedCopc : public ::testing::Test {
  protected:
   void SetUp() override {
     original_ = test::sharedFormatFile("copc/simple_with_page.copc.laz");
-    if (original_.empty()) GTEST_SKIP() << "copc/simple_with_page.copc.laz not found in ../shared/data/formats";
+    if (original_.empty()) PLUMB_SHARED_DATA_MISSING("copc/simple_with_page.copc.laz not found in ../shared/data/formats");
     std::ifstream in(original_, std::ios::binary);
     bytes_.assign(std::istreambuf_iterator<char>(in), {});
     copc_ = std::make_unique<io::CopcFile>(original_);
