@@ -68,6 +68,8 @@ struct ResolvePush {
   uint colour_mode;
   float elevation_min;  // the elevation colour ramp, above the elevation base
   float elevation_max;
+  float intensity_min;  // the intensities drawn black and white (engine/render/intensity_range.h)
+  float intensity_max;
   float edl_strength;  // eye-dome lighting; 0: off
   uint background;     // RGBA8 of empty pixels
 };

@@ -76,8 +76,10 @@ vec3 pointColour(uint id) {
       const uint rg = points.word[w + 3], bi = points.word[w + 4];
       return vec3(float(rg & 0xFFFFu), float(rg >> 16), float(bi & 0xFFFFu)) / 65535.0;
     }
-    case kColourIntensity:
-      return vec3(float(points.word[w + 4] >> 16) / 65535.0);
+    case kColourIntensity: {
+      const float intensity = float(points.word[w + 4] >> 16);
+      return vec3(clamp((intensity - push.intensity_min) / max(push.intensity_max - push.intensity_min, 1.0), 0.0, 1.0));
+    }
     case kColourElevation: {
       const float z = chunks.chunk[c].elevation_offset + uintBitsToFloat(points.word[w + 2]);
       return elevationRamp((z - push.elevation_min) / max(push.elevation_max - push.elevation_min, 1e-6));

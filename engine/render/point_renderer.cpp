@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_set>
@@ -33,6 +34,7 @@
 #include "engine/gpu/vk_check.h"
 #include "engine/lod/node_cache.h"
 #include "engine/render/gpu_node_cache.h"
+#include "engine/render/intensity_range.h"
 #include "engine/render/overlay_pass.h"
 #include "engine/render/render_target.h"
 #include "engine/render/splat_transform.h"
@@ -51,7 +53,7 @@ constexpr std::uint32_t kResolveCode[] =
 
 static_assert(sizeof(shader::SplatChunk) == 112, "SplatChunk differs from its std430 layout");
 static_assert(sizeof(shader::SplatPush) == 32, "SplatPush differs from its std430 layout");
-static_assert(sizeof(shader::ResolvePush) == 64, "ResolvePush differs from its std430 layout");
+static_assert(sizeof(shader::ResolvePush) == 72, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
 
 constexpr std::uint64_t kNoTimeout = std::numeric_limits<std::uint64_t>::max();
@@ -146,6 +148,8 @@ struct PointRenderer::Resources {
   }
   Resources(const Resources&) = delete;
   Resources& operator=(const Resources&) = delete;
+
+  std::optional<IntensityRange> intensity_range;  // sampled at the first frame drawn by intensity
 
   // Before the splat, after it, after the resolve.
   static constexpr std::uint32_t kTimestamps = 3;
@@ -298,6 +302,8 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   stats.points_selected = selection.points;
   stats.budget_reached = selection.budget_reached;
   const ColourMode mode = effectiveColourMode(settings.colour, octree.header().attributes);
+  if (mode == ColourMode::kIntensity && !r.intensity_range) r.intensity_range = sampleIntensityRange(r.nodes);
+  const IntensityRange intensity = r.intensity_range.value_or(IntensityRange{});
   const SegmentLabels* labels = mode == ColourMode::kSegment ? r.labels.get() : nullptr;
   struct Drawn {
     const lod::NodeInfo* info;
@@ -408,6 +414,8 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                     shaderColourMode(mode),
                                     0.0f,
                                     static_cast<float>(octree.header().bounds.max[2] - elevation_base),
+                                    intensity.min,
+                                    intensity.max,
                                     settings.edl ? settings.edl_strength : 0.0f,
                                     packRgba(settings.background)};
   const std::uint32_t group = shader::kResolveGroupSize;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -198,6 +199,37 @@ TEST_F(PointRendererTest, IntensityIsGreyAndElevationFollowsTheRamp) {
   EXPECT_GT(top[0], 200) << "yellow at the top";
   EXPECT_GT(top[1], 180);
   EXPECT_LT(top[2], 120);
+}
+
+// A scanner's 8-bit intensities (0 to 255 across the walls, left to right), as many LAS files
+// keep them: drawn over the sampled range (1st to 99th percentile), not over 0 to 65,535, which
+// left such clouds nearly black.
+TEST_F(PointRendererTest, IntensityIsSpreadOverTheCloudsOwnRange) {
+  const test::TempDirectory dir("plumb_intensity_range_test");
+  lod::BuildOptions options;
+  options.sources = {test::generatedSource(test::wallScenePoints(), [](std::uint64_t i) {
+    io::PointRecord point = test::wallScenePoint(i, {});
+    point.intensity = static_cast<std::uint16_t>(std::lround(255.0 * std::clamp((point.x + 4.0) / 8.0, 0.0, 1.0)));
+    return point;
+  })};
+  options.output = dir.file("ramp.plumb");
+  options.memory_mb = 64;
+  lod::buildOctree(options);
+  lod::NodeCache nodes(lod::Octree::open(options.output), 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  RenderSettings settings = flat();
+  settings.colour = ColourMode::kIntensity;
+  renderer.renderComplete(camera, settings);
+  const io::RgbaImage image = renderer.readColour();
+  keepForInspection(image, "intensity_8_bit");
+  // The view spans x from -2.67 to 2.67 m: intensities 48 and 207 at x = -2.5 and 2.5 m, about 18 %
+  // and 82 % of the range 3 to 252 (drawn over 0 to 65,535 both were black: 0.2 and 0.8 of 255).
+  const auto left = test::frontPixel(camera, -2.5, 1.5), right = test::frontPixel(camera, 2.5, 1.5);
+  const auto middle = test::frontPixel(camera, 0.05, 0.2);
+  EXPECT_NEAR(channels(image.pixel(left[0], left[1]))[0], 46, 12);
+  EXPECT_NEAR(channels(image.pixel(right[0], right[1]))[0], 209, 12);
+  EXPECT_NEAR(channels(image.pixel(middle[0], middle[1]))[0], 129, 12);
 }
 
 // Segment colours: labels by the points' own colour (red wall 1, green wall 2, the square none)
