@@ -83,7 +83,10 @@ OpenedOctree openPlumbOctree(const std::string& path) {
   OpenedOctree opened;
   OctreeHeader& h = opened.header = decodeHeader(header_bytes, path);
 
-  if (h.index_bytes != h.node_count * kIndexEntryBytes || h.index_offset < kHeaderBytes || h.index_offset > file_size ||
+  // Divide rather than multiply: node_count * kIndexEntryBytes can wrap to index_bytes (a node
+  // count near 2^62 then passed this check and asked for an exabyte index).
+  if (h.index_bytes % kIndexEntryBytes != 0 || h.index_bytes / kIndexEntryBytes != h.node_count ||
+      h.index_offset < kHeaderBytes || h.index_offset > file_size ||
       h.index_bytes > file_size - h.index_offset) {
     throw fileErrorAt(path, h.index_offset, "truncated or corrupt: the node index lies outside the file");
   }

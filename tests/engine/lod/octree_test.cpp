@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <span>
 #include <unordered_map>
 
 #include "engine/core/error.h"
@@ -267,6 +269,20 @@ TEST_F(CorruptOctree, HeaderIndexTruncationAndVersionAreChecked) {
   EXPECT_NE(openError().find("shorter than an octree header"), std::string::npos) << openError();
   rewrite(std::string(300, 'x'));
   EXPECT_NE(openError().find("not a Plumb octree"), std::string::npos) << openError();
+}
+
+// Found by the fuzz target (tests/fuzz/corpus/octree/node_count_wraps.plumb): a node count whose
+// index size wraps to the real one, 2^62 + 1 entries times 40 bytes = 40 mod 2^64, under valid
+// checksums, once passed the header check and threw std::length_error from reserve().
+TEST_F(CorruptOctree, ANodeCountWhoseIndexSizeWrapsIsReported) {
+  const auto header_bytes = std::as_bytes(std::span(bytes_)).first<kHeaderBytes>();
+  OctreeHeader header = decodeHeader(header_bytes, path_);
+  header.node_count += std::uint64_t{1} << 62;  // times 40: a multiple of 2^64 more
+  const auto wrapped = encodeHeader(header);
+  std::string bytes = bytes_;
+  std::memcpy(bytes.data(), wrapped.data(), kHeaderBytes);
+  rewrite(bytes);
+  EXPECT_NE(openError().find("node index lies outside the file"), std::string::npos) << openError();
 }
 
 }  // namespace
