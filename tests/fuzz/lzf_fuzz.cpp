@@ -1,4 +1,5 @@
-// libFuzzer target for the LZF decompressor: arbitrary blocks into a bounded output.
+// libFuzzer target for the LZF decompressor (PCD's binary_compressed data): arbitrary blocks into
+// a bounded output. Run by scripts/fuzz, and replayed in the test suite (fuzz_replay_main.cpp).
 
 #include <cstddef>
 #include <cstdint>
