@@ -14,12 +14,18 @@ bool finite(const Eigen::Vector3d& v) {
   return v.allFinite();
 }
 
+bool withinWorld(const Eigen::Vector3d& v) {
+  return v.cwiseAbs().maxCoeff() <= kMaxCoordinate;
+}
+
 }  // namespace
 
 std::optional<CameraProblem> findCameraProblem(const Camera& camera) {
   if (!finite(camera.position)) return CameraProblem{"position", "must be finite numbers"};
   if (!finite(camera.target)) return CameraProblem{"target", "must be finite numbers"};
   if (!finite(camera.up)) return CameraProblem{"up", "must be finite numbers"};
+  if (!withinWorld(camera.position)) return CameraProblem{"position", "must lie within 1e12 m of the origin"};
+  if (!withinWorld(camera.target)) return CameraProblem{"target", "must lie within 1e12 m of the origin"};
   const Eigen::Vector3d direction = camera.target - camera.position;
   // Subtracting two UTM coordinates can overflow only for absurd inputs, but check anyway.
   if (!finite(direction) || direction.norm() < kMinTargetDistance) {
@@ -31,20 +37,20 @@ std::optional<CameraProblem> findCameraProblem(const Camera& camera) {
   if (sine < std::sin(kMinUpAngle)) {
     return CameraProblem{"up", "must not be parallel to the view direction (target - position)"};
   }
-  if (!std::isfinite(camera.fov_deg) || camera.fov_deg <= 0.0 || camera.fov_deg >= 180.0) {
-    return CameraProblem{"fov_deg", "must lie strictly between 0 and 180 degrees"};
+  if (!std::isfinite(camera.fov_deg) || camera.fov_deg < kMinFovDeg || camera.fov_deg >= 180.0) {
+    return CameraProblem{"fov_deg", "must lie between 1e-6 degrees and 180 degrees (exclusive)"};
   }
-  if (!std::isfinite(camera.ortho_height_m) || camera.ortho_height_m <= 0.0) {
-    return CameraProblem{"ortho_height_m", "must be a positive number of metres"};
+  if (!std::isfinite(camera.ortho_height_m) || camera.ortho_height_m < kMinExtent) {
+    return CameraProblem{"ortho_height_m", "must be at least 1 micrometre"};
   }
   if (camera.viewport_width_px <= 0 || camera.viewport_height_px <= 0) {
     return CameraProblem{"viewport", "width and height must be positive pixel counts"};
   }
-  if (!std::isfinite(camera.near_m) || camera.near_m <= 0.0) {
-    return CameraProblem{"near_m", "must be a positive number of metres"};
+  if (!std::isfinite(camera.near_m) || camera.near_m < kMinExtent) {
+    return CameraProblem{"near_m", "must be at least 1 micrometre"};
   }
-  if (!std::isfinite(camera.far_m) || camera.far_m <= camera.near_m) {
-    return CameraProblem{"far_m", "must be a finite number of metres greater than near_m"};
+  if (!std::isfinite(camera.far_m) || camera.far_m <= camera.near_m || camera.far_m > kMaxFar) {
+    return CameraProblem{"far_m", "must be greater than near_m and at most 1e12 m"};
   }
   return std::nullopt;
 }

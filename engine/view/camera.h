@@ -24,11 +24,11 @@ struct Camera {
   Eigen::Vector3d target{0.0, 0.0, 0.0};      // the look-at point, world coordinates
   Eigen::Vector3d up{0.0, 0.0, 1.0};          // any length, not parallel to target - position
   Projection projection = Projection::kPerspective;
-  double fov_deg = 60.0;          // vertical field of view (perspective), exclusive range (0, 180)
+  double fov_deg = 60.0;          // vertical field of view (perspective), [kMinFovDeg, 180)
   double ortho_height_m = 10.0;   // the world height the viewport shows (orthographic)
   int viewport_width_px = 1920;   // > 0
   int viewport_height_px = 1080;  // > 0
-  double near_m = 0.05;           // clip distances along the view direction, 0 < near < far
+  double near_m = 0.05;           // clip distances along the view direction, kMinExtent <= near < far
   double far_m = 10'000.0;
 };
 
@@ -39,9 +39,11 @@ struct CameraProblem {
 };
 
 // The first rule `camera` breaks, or nothing when it is valid. The rules: every number finite;
-// position and target at least kMinTargetDistance apart; up not zero and at least kMinUpAngle
-// radians away from the view direction; fov_deg in (0, 180); ortho_height_m, viewport sizes > 0;
-// 0 < near_m < far_m. Every field is checked whatever the projection.
+// position and target coordinates within kMaxCoordinate and at least kMinTargetDistance apart;
+// up not zero and at least kMinUpAngle radians away from the view direction; fov_deg in
+// [kMinFovDeg, 180); ortho_height_m at least kMinExtent; viewport sizes > 0; kMinExtent <=
+// near_m < far_m <= kMaxFar. Every field is checked whatever the projection. The limits keep
+// every entry of viewMatrix and projectionMatrix finite.
 std::optional<CameraProblem> findCameraProblem(const Camera& camera);
 
 // Throws plumb::Error "camera: field '<field>': <what>" when findCameraProblem finds a problem.
@@ -49,6 +51,12 @@ void validateCamera(const Camera& camera);
 
 constexpr double kMinTargetDistance = 1e-6;  // metres
 constexpr double kMinUpAngle = 1e-6;         // radians between up and the view direction
+// Beyond these, the matrices overflow: 1 / tan of a tiny angle, 2 / a tiny view height or depth
+// range, 2 far near / (near - far), a translation of huge coordinates. Far wider than any scan.
+constexpr double kMaxCoordinate = 1e12;  // metres, of position and target
+constexpr double kMinFovDeg = 1e-6;      // degrees
+constexpr double kMinExtent = 1e-6;      // metres, of ortho_height_m and near_m
+constexpr double kMaxFar = 1e12;         // metres
 
 // The unit view direction, (target - position) normalised. The camera must be valid.
 Eigen::Vector3d viewDirection(const Camera& camera);

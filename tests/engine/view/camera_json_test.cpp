@@ -155,11 +155,13 @@ TEST(CameraJson, ErrorsNameTheFieldOrTheByte) {
   expectError(R"({"position": [1, 2, 3], "target": [1, 2, 3]})", {"field 'target'", "from the position"});
   expectError(withFields(R"(, "up": [0, 1, 0])"), {"field 'up'", "parallel"});
   expectError(withFields(R"(, "up": [0, 0, 0])"), {"field 'up'", "zero vector"});
-  expectError(withFields(R"(, "fov_deg": 180)"), {"field 'fov_deg'", "between 0 and 180"});
-  expectError(withFields(R"(, "fov_deg": 0)"), {"field 'fov_deg'", "between 0 and 180"});
-  expectError(withFields(R"(, "ortho_height_m": -1)"), {"field 'ortho_height_m'", "positive"});
+  expectError(withFields(R"(, "fov_deg": 180)"), {"field 'fov_deg'", "between 1e-6 degrees and 180"});
+  expectError(withFields(R"(, "fov_deg": 0)"), {"field 'fov_deg'", "between 1e-6 degrees and 180"});
+  expectError(withFields(R"(, "ortho_height_m": -1)"), {"field 'ortho_height_m'", "at least 1 micrometre"});
+  // Found by the camera fuzz target: finite, positive, but 2 / height overflowed.
+  expectError(withFields(R"(, "ortho_height_m": 1e-320)"), {"field 'ortho_height_m'", "at least 1 micrometre"});
   expectError(withFields(R"(, "viewport": [0, 1080])"), {"field 'viewport'", "positive"});
-  expectError(withFields(R"(, "near_m": 0)"), {"field 'near_m'", "positive"});
+  expectError(withFields(R"(, "near_m": 0)"), {"field 'near_m'", "at least 1 micrometre"});
   expectError(withFields(R"(, "near_m": 5, "far_m": 1)"), {"field 'far_m'", "greater than near_m"});
 }
 

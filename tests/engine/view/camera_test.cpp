@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "engine/core/error.h"
@@ -157,6 +158,55 @@ TEST(Camera, ValidationNamesTheBrokenRule) {
   EXPECT_EQ(field(c), "far_m");
   EXPECT_THROW(validateCamera(c), Error);
   EXPECT_NO_THROW(validateCamera(good));
+}
+
+// Found by the camera fuzz target: cameras whose numbers were finite but whose matrices were not
+// (an orthographic view 1e-320 m high made 2 / height infinite). Each limit is the one that keeps
+// its matrix entry finite.
+TEST(Camera, LimitsKeepTheMatricesFinite) {
+  const auto field = [](const Camera& camera) {
+    const auto problem = findCameraProblem(camera);
+    return problem ? problem->field : std::string("(valid)");
+  };
+  Camera c;
+  c.position.x() = 2e12;
+  EXPECT_EQ(field(c), "position");
+  c = Camera{};
+  c.target.y() = -2e12;
+  EXPECT_EQ(field(c), "target");
+  c = Camera{};
+  c.fov_deg = 1e-320;
+  EXPECT_EQ(field(c), "fov_deg");
+  c = Camera{};
+  c.ortho_height_m = 1e-320;
+  EXPECT_EQ(field(c), "ortho_height_m");
+  c = Camera{};
+  c.near_m = 1e-310;
+  c.far_m = 2e-310;
+  EXPECT_EQ(field(c), "near_m");
+  c = Camera{};
+  c.far_m = 1e300;
+  EXPECT_EQ(field(c), "far_m");
+
+  // At the limits, in both projections, with the most extreme viewport: finite matrices.
+  Camera edge;
+  edge.position = Eigen::Vector3d(kMaxCoordinate, -kMaxCoordinate, kMaxCoordinate);
+  edge.target = Eigen::Vector3d(-kMaxCoordinate, kMaxCoordinate, -kMaxCoordinate);
+  edge.fov_deg = kMinFovDeg;
+  edge.ortho_height_m = kMinExtent;
+  edge.near_m = kMinExtent;
+  edge.far_m = std::nextafter(kMinExtent, 1.0);
+  edge.viewport_width_px = 1;
+  edge.viewport_height_px = std::numeric_limits<int>::max();
+  for (const Projection projection : {Projection::kPerspective, Projection::kOrthographic}) {
+    edge.projection = projection;
+    ASSERT_EQ(field(edge), "(valid)");
+    EXPECT_TRUE(viewMatrix(edge).allFinite());
+    EXPECT_TRUE(projectionMatrix(edge).allFinite());
+    edge.far_m = kMaxFar;
+    EXPECT_TRUE(projectionMatrix(edge).allFinite());
+    edge.far_m = std::nextafter(kMinExtent, 1.0);
+  }
 }
 
 }  // namespace
