@@ -183,8 +183,8 @@ int main(int argc, char** argv) {
     const Input& input = mutator.next();
     std::ofstream(options.write_path, std::ios::binary)
         .write(reinterpret_cast<const char*>(input.data()), static_cast<std::streamsize>(input.size()));
-    std::cout << "wrote mutation " << options.write_index << " (" << input.size() << " bytes) to "
-              << options.write_path << "\n";
+    std::cout << "wrote mutation " << options.write_index << " (" << input.size() << " bytes) to " << options.write_path
+              << "\n";
     return 0;
   }
 
@@ -205,7 +205,7 @@ int main(int argc, char** argv) {
   for (std::uint64_t i = 0; i < options.iterations; ++i) run(mutator.next(), "mutation", i);
   std::snprintf(g_current, sizeof(g_current), "none: the run is over (the leak check at exit?)");
   const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
-  std::cout << seeds.size() << " seeds and " << options.iterations << " mutations (seed " << options.seed
-            << ") in " << took.count() << " s: no findings\n";
+  std::cout << seeds.size() << " seeds and " << options.iterations << " mutations (seed " << options.seed << ") in "
+            << took.count() << " s: no findings\n";
   return 0;
 }

@@ -8,15 +8,31 @@
 namespace plumb::fuzz {
 namespace {
 
-// Values at which counts, sizes and offsets break: zero, one, sign and width boundaries.
-constexpr std::array<std::uint64_t, 14> kBoundaries{
-    0,          1,          0x7f,       0x80,       0xff,          0x7fff,         0x8000,
-    0xffff,     0x7fffffff, 0x80000000, 0xffffffff, 0x100000000,   0x7fffffffffffffff, 0xffffffffffffffff};
+// A value at which counts, sizes and offsets break: zero, one, or a sign or width boundary of
+// 8, 16, 32 or 64-bit integers.
+std::uint64_t boundary(Random& random) {
+  const std::uint64_t bits = 8u << random.below(4);
+  const std::uint64_t top_bit = std::uint64_t{1} << (bits - 1);
+  switch (random.below(6)) {
+    case 0:
+      return 0;
+    case 1:
+      return 1;
+    case 2:
+      return top_bit - 1;  // the largest signed
+    case 3:
+      return top_bit;  // the smallest signed, as unsigned
+    case 4:
+      return top_bit - 1 + top_bit;  // the largest unsigned
+    default:
+      return bits == 64 ? 0 : top_bit << 1;  // one past it
+  }
+}
 
 // What text formats (PLY and PCD headers, ASCII clouds, JSON) choke on.
 constexpr std::array<std::string_view, 22> kTokens{
-    "0",    "-1",   "1e308", "-1e308", "1e-320", "nan", "inf",   "-inf", "4294967296", "18446744073709551616",
-    "-0",   "null", "true",  "[",      "]",      "{",   "}",     "\"",   ",",          ":",
+    "0",    "-1",   "1e308", "-1e308", "1e-320", "nan", "inf", "-inf", "4294967296", "18446744073709551616",
+    "-0",   "null", "true",  "[",      "]",      "{",   "}",   "\"",   ",",          ":",
     "\"\"", "\n"};
 
 // Each input grows to at most this: bigger inputs only make the run slower.
@@ -49,7 +65,7 @@ void Mutator::mutateOnce(Input& input) {
     }
     case 1: {  // a little-endian integer of 1, 2, 4 or 8 bytes set to a boundary, or minus it
       const std::size_t width = std::min<std::size_t>(std::size_t{1} << random_.below(4), input.size());
-      std::uint64_t value = kBoundaries[random_.below(kBoundaries.size())];
+      std::uint64_t value = boundary(random_);
       if (random_.below(2) == 0) value = ~value + 1;
       std::memcpy(input.data() + at(input.size() - width), &value, width);
       break;
