@@ -6,8 +6,8 @@
 //   plumb_eval_corners --out DIR [--repetitions N] [--noise-mm 1,2,5,10,20,30] [--points N]
 //                      [--details low,medium,high,full,view:D,paper:D...] [--jobs N] [--stations N]
 //                      [--grow-limit-s S] [--tp-sigmas K | --tp-from-data] [--noise-sigmas N]
-//                      [--full-repetitions N] [--click corner|wall]
-//                      [--refine-c C] [--print-segments]
+//                      [--full-repetitions N] [--click corner|wall] [--corners N]
+//                      [--refine-c C] [--known-shortfall NOISE:DETAIL:FACTOR:LOST...] [--print-segments]
 //
 // The named detail levels use the paper's mapping (and full every point); view:D is a click from
 // D metres whose detail follows the data at the click, as plumb grow and the viewer make it (its
@@ -19,9 +19,10 @@
 //   2. read each point's plane_id from the PLY and fit every true plane on all its points: the
 //      three fitted planes of a corner meet at the limit corner;
 //   3. build and open the octree;
-//   4. for each room corner and detail level, grow from a click and take the reconstructed corner
-//      nearest the truth; none within 0.1 m, or a grow cancelled at the time limit: lost. The
-//      click (--click):
+//   4. for each room corner and detail level, grow from a click and take the corner the grow
+//      reports for the clicked corner: the one of the segments it found for the corner's three
+//      planes (clickedCorner). A plane not found, no corner of the three, one farther than 0.1 m
+//      from the truth or a grow cancelled at the time limit: lost. The click (--click):
 //        corner: 0.1 m inside the corner along each axis (the paper's pattern);
 //        wall:   on one of the corner's walls, 0.3 m from each of the two others, as a user
 //                clicks a wall near a corner (the walls taken in turn: corner i, wall i mod 3,
@@ -29,8 +30,10 @@
 //      both nearer where the seed sphere is too small to reach the other walls from there.
 //      The grows of one scan share a node cache: only the first is cold.
 // Writes DIR/corners.csv (one row per trial) and DIR/summary.csv (per noise and detail, with the
-// issue's targets) and prints the summary. Exits 1 on an internal failure (a throw), never on a
-// missed target: judging those is what the output is for.
+// issue's targets) and prints the summary. A lost corner counts in the medians as an infinite
+// error. Exits 2 when a target is missed (medium detail at most noise / 10, full detail within
+// 1.2 x the limit, at most 1 % lost; --known-shortfall bounds a target not met yet), 1 on an
+// internal failure (a throw), 0 otherwise.
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -48,19 +51,19 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
-#include "engine/io/byte_order.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/lod/octree_builder.h"
@@ -69,6 +72,7 @@
 #include "reco/plane_regression.h"
 #include "reco/region_grower.h"
 #include "reco/sim/simulation.h"
+#include "tests/support/simulated_truth.h"
 
 namespace {
 
@@ -84,6 +88,9 @@ constexpr double kClickInset = 0.1;
 // less where the seed sphere is smaller (they must lie inside it: 2 x offset <= r_s).
 constexpr double kWallClickOffset = 0.3;
 constexpr double kLostDistance = 0.1;         // a reconstructed corner farther than this was not found
+// A segment within this angle of a true plane's orientation is the grow's version of it, however
+// badly fitted: the room's planes meet at right angles, so no other plane of the corner comes near.
+constexpr double kMatchAngleDeg = 30.0;
 constexpr double kDefaultViewDistance = 3.0;  // plumb grow's default, and the issue's "medium"
 constexpr std::size_t kCacheBytes = std::size_t{256} << 20;
 
@@ -199,9 +206,9 @@ Truth readTruth(const std::string& path) {
 
 // ---- The statistical limit ---------------------------------------------------------------
 
-// One least-squares regression per true plane over all the points the PLY labels with it.
-// io::PointReader drops the simulator's plane_id, so this reads the simulator's own layout:
-// binary little-endian, one vertex element, scalar properties.
+// One least-squares regression per true plane over all the points the PLY labels with it:
+// test::fitTruePlanes (tests/support/simulated_truth.h).
+
 // The true plane of each simulated point, found by position (--print-segments): which surface
 // the points of a grown segment came from.
 class PointLabels {
@@ -238,78 +245,6 @@ class PointLabels {
   std::map<Key, std::vector<std::pair<Eigen::Vector3d, std::uint32_t>>> cells_;
 };
 
-std::vector<reco::PlaneRegression> fitTruePlanes(const std::string& path, std::size_t plane_count,
-                                                 PointLabels* labels) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw fileError(path, "cannot open the simulated scan");
-  std::string line;
-  std::uint64_t vertices = 0;
-  std::size_t row_bytes = 0;
-  struct Field {
-    std::size_t offset;
-    std::string type;
-  };
-  std::map<std::string, Field> fields;
-  bool binary_le = false;
-  while (std::getline(in, line) && line != "end_header") {
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    if (keyword == "format") {
-      std::string format;
-      words >> format;
-      binary_le = format == "binary_little_endian";
-    } else if (keyword == "element") {
-      std::string name;
-      words >> name >> vertices;
-      if (name != "vertex") throw fileError(path, "expected only a vertex element, found '" + name + "'");
-    } else if (keyword == "property") {
-      std::string type, name;
-      words >> type >> name;
-      static const std::map<std::string, std::size_t> kSizes{
-          {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-          {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-          {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-      const auto size = kSizes.find(type);
-      if (size == kSizes.end()) throw fileError(path, "unexpected property type '" + type + "'");
-      fields[name] = {row_bytes, type};
-      row_bytes += size->second;
-    }
-  }
-  if (!in || !binary_le) throw fileError(path, "not a binary little-endian PLY as plumb simulate writes");
-  for (const char* name : {"x", "y", "z", "plane_id"}) {
-    if (!fields.contains(name)) throw fileError(path, std::string("has no property '") + name + "'");
-  }
-  const auto coordinate = [&](const std::byte* row, const Field& field) {
-    return field.type == "double" || field.type == "float64"
-               ? io::loadLittleEndian<double>(row + field.offset)
-               : static_cast<double>(io::loadLittleEndian<float>(row + field.offset));
-  };
-  const Field x = fields["x"], y = fields["y"], z = fields["z"], plane_id = fields["plane_id"];
-  if (plane_id.type != "uint" && plane_id.type != "uint32") throw fileError(path, "plane_id is not a uint");
-
-  // Referenced at the offset: sums relative to a nearby point keep the covariance exact.
-  std::vector<reco::PlaneRegression> regressions(plane_count, reco::PlaneRegression::withReference(kOffset));
-  constexpr std::uint64_t kBatchRows = 65536;
-  std::vector<std::byte> rows(kBatchRows * row_bytes);
-  const auto data_offset = static_cast<std::uint64_t>(in.tellg());
-  for (std::uint64_t done = 0; done < vertices;) {
-    const std::uint64_t count = std::min(kBatchRows, vertices - done);
-    in.read(reinterpret_cast<char*>(rows.data()), static_cast<std::streamsize>(count * row_bytes));
-    if (!in) throw fileErrorAt(path, data_offset + done * row_bytes, "truncated vertex data in these rows");
-    for (std::uint64_t i = 0; i < count; ++i) {
-      const std::byte* row = rows.data() + i * row_bytes;
-      const auto id = io::loadLittleEndian<std::uint32_t>(row + plane_id.offset);
-      if (id >= plane_count) throw fileError(path, "plane_id " + std::to_string(id) + " is not in the truth");
-      const Eigen::Vector3d p(coordinate(row, x), coordinate(row, y), coordinate(row, z));
-      regressions[id].add(p);
-      if (labels != nullptr) labels->add(p, id);
-    }
-    done += count;
-  }
-  return regressions;
-}
-
 // Where three planes meet, solved relative to `near` (a point close to the answer) so that the
 // large world coordinates do not enter the solve. Empty when the planes are (nearly) parallel.
 std::optional<Eigen::Vector3d> intersect(const std::array<reco::Plane, 3>& planes, const Eigen::Vector3d& near) {
@@ -342,6 +277,9 @@ struct Trial {
   std::size_t segments;       // how many planes the grow kept (a corner needs three)
   double spacing_m;           // the point spacing of the grow's starting octree level
   bool timed_out;             // cancelled at --grow-limit-s, so lost
+  // The grower's work, which the machine's speed does not change (issue 25, point 2).
+  std::uint64_t cells_visited;
+  std::uint64_t points_tested;
 };
 
 // A folder removed with everything in it when the repetition ends, however it ends.
@@ -357,6 +295,14 @@ struct TemporaryDirectory {
   }
   TemporaryDirectory(const TemporaryDirectory&) = delete;
   TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
+};
+
+// The most work a grow may do per point it grows (0: unbounded), a bound that holds on any machine:
+// a cost that grows with the octree's depth or the cloud's size instead of the points grown
+// breaks it (issue 25, point 2).
+struct WorkBounds {
+  double max_tests_per_point = 0;   // point-to-plane tests per grown point
+  double max_cells_per_kpoint = 0;  // cell visits per thousand grown points
 };
 
 struct Settings {
@@ -382,6 +328,9 @@ struct Settings {
   double refine_c = reco::GrowOptions{}.refine_c;
   bool print_segments = false;
   std::string click = "corner";  // the click pattern: corner or wall (see the top of the file)
+  std::vector<std::string> known_shortfalls;  // NOISE:DETAIL:FACTOR:LOST (struct Shortfall)
+  std::uint32_t corners = 8;                   // the room's first N corners are clicked
+  WorkBounds work_bounds;
 };
 
 // Where `plane` passes the limit corner along the limit plane's normal, towards the room's
@@ -460,6 +409,46 @@ Eigen::Vector3d clickNear(const std::string& pattern, const TruthCorner& corner,
   return corner.position + std::min(kWallClickOffset, seed_radius_m / 2.0) * along;
 }
 
+// The segment the grow found for a true plane near its corner: a valid plane within
+// kMatchAngleDeg of the truth's that passes within kLostDistance of the true corner; the largest
+// where a wall came out in pieces. Empty when the grow did not find the plane. A segment that
+// found the plane badly (tilted by a door leaf it took in) is still the one: its corner's error
+// counts, as the user snapping to it gets it.
+std::optional<std::uint32_t> segmentOfPlane(const reco::GrowSnapshot& result, const TruthPlane& truth_plane,
+                                            const Eigen::Vector3d& true_corner) {
+  const double min_cos = std::cos(kMatchAngleDeg * std::numbers::pi / 180.0);
+  std::optional<std::uint32_t> best;
+  for (std::uint32_t s = 0; s < result.segments.size(); ++s) {
+    const reco::SegmentSnapshot& segment = result.segments[s];
+    if (!segment.plane.valid || std::abs(segment.plane.normal.dot(truth_plane.normal)) < min_cos) continue;
+    if (segment.plane.distance(true_corner) > kLostDistance) continue;
+    if (!best || segment.points > result.segments[*best].points) best = s;
+  }
+  return best;
+}
+
+// The corner the grow reports for the clicked corner: the one of the segments it found for the
+// corner's three planes, as a user snapping to the corner of the three walls gets it. Not the
+// reported corner nearest the truth, which could be another triple's that happens to lie near.
+// Empty (lost) when a plane was not found or the grow reports no corner of the three.
+std::optional<Eigen::Vector3d> clickedCorner(const reco::GrowSnapshot& result, const TruthCorner& corner,
+                                             const Truth& truth) {
+  std::array<std::uint32_t, 3> wanted{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::optional<std::uint32_t> segment =
+        segmentOfPlane(result, truth.planes[corner.planes[i]], corner.position);
+    if (!segment) return std::nullopt;
+    wanted[i] = *segment;
+  }
+  std::sort(wanted.begin(), wanted.end());
+  for (const reco::Corner& found : result.corners) {
+    std::array<std::uint32_t, 3> segments = found.segments;
+    std::sort(segments.begin(), segments.end());
+    if (segments == wanted) return found.position;
+  }
+  return std::nullopt;
+}
+
 std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std::uint32_t repetition) {
   char name[96];
   std::snprintf(name, sizeof name, "plumb-eval-%d-%g-%u", static_cast<int>(::getpid()), noise_mm, repetition);
@@ -478,8 +467,10 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
 
   const Truth truth = readTruth(request.truth_path);
   PointLabels labels;
+  std::function<void(const Eigen::Vector3d&, std::uint32_t)> label;
+  if (settings.print_segments) label = [&](const Eigen::Vector3d& p, std::uint32_t id) { labels.add(p, id); };
   const std::vector<reco::PlaneRegression> regressions =
-      fitTruePlanes(request.ply_path, truth.planes.size(), settings.print_segments ? &labels : nullptr);
+      test::fitTruePlanes(request.ply_path, truth.planes.size(), kOffset, label);
 
   lod::BuildOptions build;
   build.sources = lod::fileSources({request.ply_path});
@@ -496,7 +487,8 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
   const double plane_threshold_m =
       std::max(reco::ParameterConstants{}.plane_threshold_m, settings.tp_sigmas * noise_mm * 1e-3);
   std::vector<Trial> trials;
-  for (std::uint32_t c = 0; c < truth.room_corners.size(); ++c) {
+  const auto corners = std::min<std::size_t>(truth.room_corners.size(), settings.corners);
+  for (std::uint32_t c = 0; c < corners; ++c) {
     const TruthCorner& corner = truth.room_corners[c];
     std::array<reco::Plane, 3> fitted;
     for (std::size_t i = 0; i < 3; ++i) fitted[i] = regressions[corner.planes[i]].fit();
@@ -542,6 +534,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
       double nearest = std::numeric_limits<double>::infinity();
       for (const reco::Corner& found : result.corners)
         nearest = std::min(nearest, (found.position - corner.position).norm());
+      const std::optional<Eigen::Vector3d> clicked_corner = clickedCorner(result, corner, truth);
       std::uint64_t points = 0;
       for (const reco::SegmentSnapshot& segment : result.segments) points += segment.points;
       Trial trial{.noise_mm = noise_mm,
@@ -556,9 +549,14 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
                   .true_points = true_points,
                   .segments = result.segments.size(),
                   .spacing_m = octree->spacing(result.level),
-                  .timed_out = false};
+                  .timed_out = false,
+                  .cells_visited = result.cells_visited,
+                  .points_tested = result.points_tested};
       if (std::isfinite(nearest)) trial.nearest_mm = nearest * 1e3;
-      if (nearest <= kLostDistance && !result.cancelled) trial.error_mm = nearest * 1e3;
+      if (clicked_corner && !result.cancelled) {
+        const double error = (*clicked_corner - corner.position).norm();
+        if (error <= kLostDistance) trial.error_mm = error * 1e3;
+      }
       trial.timed_out = result.cancelled;
       trials.push_back(std::move(trial));
     }
@@ -568,14 +566,56 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
 
 // ---- Summary -----------------------------------------------------------------------------
 
-// Linear interpolation between the order statistics (R's type 7); `sorted` is not empty.
+// Linear interpolation between the order statistics (R's type 7); `sorted` is not empty and may
+// end in infinities (lost corners): a percentile that reaches one is infinite.
 double percentile(const std::vector<double>& sorted, double p) {
   const double position = p * static_cast<double>(sorted.size() - 1);
   const auto below = static_cast<std::size_t>(std::floor(position));
   const std::size_t above = std::min(below + 1, sorted.size() - 1);
   const double t = position - static_cast<double>(below);
+  if (t == 0.0) return sorted[below];
+  if (std::isinf(sorted[above])) return sorted[above];
   return sorted[below] + t * (sorted[above] - sorted[below]);
 }
+
+// A target the grower does not meet yet (an open issue), with the bound that still holds it:
+// --known-shortfall NOISE:DETAIL:FACTOR:LOST, the row passes with its median within FACTOR times
+// the target and at most LOST corners lost. It keeps a regression from hiding behind a known miss.
+struct Shortfall {
+  double noise_mm = 0;
+  std::string detail;
+  double factor = 1;
+  std::size_t lost = 0;
+};
+
+Shortfall parseShortfall(const std::string& text) {
+  const std::size_t first = text.find(':');
+  const std::size_t last = text.rfind(':');
+  const std::size_t before_last = last == std::string::npos || last == 0 ? std::string::npos : text.rfind(':', last - 1);
+  const auto fail = [&]() -> Error {
+    return Error("--known-shortfall '" + text + "': expected NOISE_MM:DETAIL:FACTOR:LOST, e.g. 30:full:2.6:1");
+  };
+  if (first == std::string::npos || before_last == std::string::npos || before_last <= first) throw fail();
+  Shortfall shortfall;
+  shortfall.detail = text.substr(first + 1, before_last - first - 1);
+  try {
+    std::size_t used = 0;
+    shortfall.noise_mm = std::stod(text.substr(0, first), &used);
+    if (used != first) throw fail();
+    const std::string factor = text.substr(before_last + 1, last - before_last - 1);
+    shortfall.factor = std::stod(factor, &used);
+    if (used != factor.size()) throw fail();
+    const std::string lost = text.substr(last + 1);
+    shortfall.lost = std::stoul(lost, &used);
+    if (used != lost.size()) throw fail();
+  } catch (const std::logic_error&) {
+    throw fail();
+  }
+  if (!(shortfall.factor >= 1.0 && shortfall.factor < 1e6)) throw fail();
+  detailLevel(shortfall.detail);  // an unknown name fails here
+  return shortfall;
+}
+
 
 struct SummaryRow {
   double noise_mm = 0;
@@ -587,11 +627,19 @@ struct SummaryRow {
   double median_limit_mm = NAN;
   double median_spacing_mm = NAN;
   double median_grow_ms = NAN;
-  std::string target;  // the issue's target for this row, or empty
-  std::string met;     // yes, no or n/a
+  double target_mm = NAN;        // the issue's target for the median; NaN: none for this row
+  std::size_t lost_allowed = 0;  // the issue's 1 % of the trials
+  std::string target;            // the targets in words, or empty
+  std::string met;               // yes, NO, n/a or "known shortfall (...)"
+  // The most work a grow of the row did per point grown: point-to-plane tests, and cell visits
+  // per thousand points. Bounded by --max-tests-per-point and --max-cells-per-kpoint.
+  double max_tests_per_point = 0;
+  double max_cells_per_kpoint = 0;
+  bool work_within_bounds = true;
 };
 
-SummaryRow summarise(const std::vector<Trial>& trials, double noise_mm, const std::string& detail) {
+SummaryRow summarise(const std::vector<Trial>& trials, double noise_mm, const std::string& detail,
+                     const std::optional<Shortfall>& shortfall, const WorkBounds& bounds) {
   SummaryRow row;
   row.noise_mm = noise_mm;
   row.detail = detail;
@@ -604,17 +652,24 @@ SummaryRow summarise(const std::vector<Trial>& trials, double noise_mm, const st
   for (const Trial& trial : trials) {
     if (trial.noise_mm != noise_mm || trial.detail != detail) continue;
     ++row.trials;
-    if (trial.error_mm) {
-      errors.push_back(*trial.error_mm);
-    } else {
+    // A lost corner counts in the medians as an infinite error: leaving it out would let a
+    // grower that loses its hard corners look more accurate.
+    errors.push_back(trial.error_mm.value_or(std::numeric_limits<double>::infinity()));
+    if (!trial.error_mm) {
       ++row.lost;
       if (trial.timed_out) ++row.timed_out;
     }
+    const double grown = static_cast<double>(std::max<std::uint64_t>(trial.points, 1));
+    row.max_tests_per_point = std::max(row.max_tests_per_point, static_cast<double>(trial.points_tested) / grown);
+    row.max_cells_per_kpoint = std::max(row.max_cells_per_kpoint, 1e3 * static_cast<double>(trial.cells_visited) / grown);
     limits.push_back(trial.limit_mm);
     spacings.push_back(trial.spacing_m * 1e3);
     times.push_back(trial.grow_ms);
   }
   for (auto* values : {&errors, &limits, &spacings, &times}) std::sort(values->begin(), values->end());
+  row.work_within_bounds =
+      (bounds.max_tests_per_point == 0 || row.max_tests_per_point <= bounds.max_tests_per_point) &&
+      (bounds.max_cells_per_kpoint == 0 || row.max_cells_per_kpoint <= bounds.max_cells_per_kpoint);
   if (!errors.empty()) {
     row.median_mm = percentile(errors, 0.5);
     row.p25_mm = percentile(errors, 0.25);
@@ -625,16 +680,34 @@ SummaryRow summarise(const std::vector<Trial>& trials, double noise_mm, const st
     row.median_spacing_mm = percentile(spacings, 0.5);
     row.median_grow_ms = percentile(times, 0.5);
   }
-  char text[64];
+  // The issue's targets (issue 19, point 5): medium detail at most noise / 10 (from 2 mm, where
+  // noise / 10 is above the spacing's own error), full detail within 1.2 x the statistical limit,
+  // and at most 1 % of the corners lost at either.
   row.met = "n/a";
   if (detail == "medium" && noise_mm >= 2.0) {
-    std::snprintf(text, sizeof text, "median <= %.3f mm (noise/10)", noise_mm / 10.0);
-    row.target = text;
-    row.met = row.median_mm <= noise_mm / 10.0 ? "yes" : "no";  // NaN (all lost) fails
+    row.target_mm = noise_mm / 10.0;
+    row.target = "noise/10";
   } else if (detail == "full") {
-    std::snprintf(text, sizeof text, "median <= %.3f mm (1.2 x limit)", 1.2 * row.median_limit_mm);
-    row.target = text;
-    row.met = row.median_mm <= 1.2 * row.median_limit_mm ? "yes" : "no";
+    row.target_mm = 1.2 * row.median_limit_mm;
+    row.target = "1.2 x limit";
+  }
+  if (std::isnan(row.target_mm)) return row;
+  row.lost_allowed = row.trials / 100;
+  char text[96];
+  std::snprintf(text, sizeof text, "median <= %.3f mm (%s); lost <= %zu", row.target_mm, row.target.c_str(),
+                row.lost_allowed);
+  row.target = text;
+  const auto within = [&](double factor, std::size_t lost) {
+    return row.median_mm <= factor * row.target_mm && row.lost <= lost;  // an infinite median fails
+  };
+  if (within(1.0, row.lost_allowed)) {
+    row.met = "yes";
+    if (shortfall) row.met = "yes (its known shortfall is no longer needed: remove it)";
+  } else if (shortfall && within(shortfall->factor, shortfall->lost)) {
+    std::snprintf(text, sizeof text, "known shortfall (within %.2f x; %zu lost)", shortfall->factor, shortfall->lost);
+    row.met = text;
+  } else {
+    row.met = "NO";
   }
   return row;
 }
@@ -654,16 +727,18 @@ void writeText(const fs::path& path, const std::string& text) {
 }
 
 std::string trialsCsv(const std::vector<Trial>& trials) {
-  // The issue's columns, then what explains a lost corner: the planes kept and the nearest corner.
+  // The issue's columns, then what explains a lost corner (the planes kept, the reported corner
+  // nearest the truth whichever planes it joins), then the grow's work.
   std::string csv =
       "noise_mm,repetition,corner,detail,error_mm,lost,limit_mm,grow_ms,points,spacing_m,"
-      "segments,nearest_mm,timed_out,true_points\n";
+      "segments,nearest_mm,timed_out,true_points,cells_visited,points_tested\n";
   for (const Trial& t : trials) {
     csv += number(t.noise_mm) + "," + std::to_string(t.repetition) + "," + std::to_string(t.corner) + "," + t.detail +
            "," + (t.error_mm ? number(*t.error_mm) : "") + "," + (t.error_mm ? "0" : "1") + "," + number(t.limit_mm) +
            "," + number(t.grow_ms, "%.3f") + "," + std::to_string(t.points) + "," + number(t.spacing_m) + "," +
            std::to_string(t.segments) + "," + (t.nearest_mm ? number(*t.nearest_mm) : "") + "," +
-           (t.timed_out ? "1" : "0") + "," + std::to_string(t.true_points) + "\n";
+           (t.timed_out ? "1" : "0") + "," + std::to_string(t.true_points) + "," + std::to_string(t.cells_visited) +
+           "," + std::to_string(t.points_tested) + "\n";
   }
   return csv;
 }
@@ -671,25 +746,28 @@ std::string trialsCsv(const std::vector<Trial>& trials) {
 std::string summaryCsv(const std::vector<SummaryRow>& rows) {
   std::string csv =
       "noise_mm,detail,detail_index,trials,lost,timed_out,median_mm,p25_mm,p75_mm,median_limit_mm,ratio_to_limit,"
-      "median_spacing_mm,median_grow_ms,target,target_met,view_distance_m\n";
+      "median_spacing_mm,median_grow_ms,target,target_met,view_distance_m,max_tests_per_point,max_cells_per_kpoint\n";
   for (const SummaryRow& r : rows) {
     csv += number(r.noise_mm) + "," + r.detail + "," + std::to_string(r.detail_index) + "," + std::to_string(r.trials) +
            "," + std::to_string(r.lost) + "," + std::to_string(r.timed_out) + "," + number(r.median_mm) + "," +
            number(r.p25_mm) + "," + number(r.p75_mm) + "," + number(r.median_limit_mm) + "," +
            number(r.median_mm / r.median_limit_mm) + "," + number(r.median_spacing_mm) + "," +
-           number(r.median_grow_ms, "%.3f") + "," + r.target + "," + r.met + "," + number(r.view_distance_m) + "\n";
+           number(r.median_grow_ms, "%.3f") + "," + r.target + "," + r.met + "," + number(r.view_distance_m) + "," +
+           number(r.max_tests_per_point) + "," + number(r.max_cells_per_kpoint) + "\n";
   }
   return csv;
 }
 
 void printSummary(const std::vector<SummaryRow>& rows) {
-  std::printf("%8s %-7s %7s %5s %5s %10s %10s %10s %10s %7s %9s %8s  %s\n", "noise_mm", "detail", "trials", "lost",
-              "t/out", "median_mm", "p25_mm", "p75_mm", "limit_mm", "ratio", "spacing", "grow_ms", "target");
+  std::printf("%8s %-7s %7s %5s %5s %10s %10s %10s %10s %7s %9s %8s %7s %7s  %s\n", "noise_mm", "detail", "trials",
+              "lost", "t/out", "median_mm", "p25_mm", "p75_mm", "limit_mm", "ratio", "spacing", "grow_ms", "tests/p",
+              "cells/k", "target");
   for (const SummaryRow& r : rows) {
-    std::printf("%8g %-7s %7zu %5zu %5zu %10.4f %10.4f %10.4f %10.4f %7.2f %7.1fmm %8.1f  %s%s%s\n", r.noise_mm,
-                r.detail.c_str(), r.trials, r.lost, r.timed_out, r.median_mm, r.p25_mm, r.p75_mm, r.median_limit_mm,
-                r.median_mm / r.median_limit_mm, r.median_spacing_mm, r.median_grow_ms, r.target.c_str(),
-                r.target.empty() ? "" : ": ", r.target.empty() ? "" : r.met.c_str());
+    std::printf("%8g %-7s %7zu %5zu %5zu %10.4f %10.4f %10.4f %10.4f %7.2f %7.1fmm %8.1f %7.2f %7.2f%s  %s%s%s\n",
+                r.noise_mm, r.detail.c_str(), r.trials, r.lost, r.timed_out, r.median_mm, r.p25_mm, r.p75_mm,
+                r.median_limit_mm, r.median_mm / r.median_limit_mm, r.median_spacing_mm, r.median_grow_ms,
+                r.max_tests_per_point, r.max_cells_per_kpoint, r.work_within_bounds ? "" : " (past the work bounds)",
+                r.target.c_str(), r.target.empty() ? "" : ": ", r.target.empty() ? "" : r.met.c_str());
   }
 }
 
@@ -706,6 +784,15 @@ int run(const Settings& settings) {
     if (std::find(settings.details.begin(), settings.details.begin() + static_cast<std::ptrdiff_t>(i),
                   settings.details[i]) != settings.details.begin() + static_cast<std::ptrdiff_t>(i)) {
       throw Error("--details names " + settings.details[i] + " twice");
+    }
+  }
+  std::vector<Shortfall> shortfalls;
+  for (const std::string& text : settings.known_shortfalls) {
+    shortfalls.push_back(parseShortfall(text));
+    const Shortfall& added = shortfalls.back();
+    if (std::find(settings.noise_mm.begin(), settings.noise_mm.end(), added.noise_mm) == settings.noise_mm.end() ||
+        std::find(settings.details.begin(), settings.details.end(), added.detail) == settings.details.end()) {
+      throw Error("--known-shortfall '" + text + "' names a noise level or detail that does not run");
     }
   }
   fs::create_directories(settings.out);
@@ -743,7 +830,13 @@ int run(const Settings& settings) {
   for (std::vector<Trial>& result : results) trials.insert(trials.end(), result.begin(), result.end());
   std::vector<SummaryRow> rows;
   for (const double noise_mm : settings.noise_mm) {
-    for (const std::string& detail : settings.details) rows.push_back(summarise(trials, noise_mm, detail));
+    for (const std::string& detail : settings.details) {
+      std::optional<Shortfall> shortfall;
+      for (const Shortfall& known : shortfalls) {
+        if (known.noise_mm == noise_mm && known.detail == detail) shortfall = known;
+      }
+      rows.push_back(summarise(trials, noise_mm, detail, shortfall, settings.work_bounds));
+    }
   }
   writeText(fs::path(settings.out) / "corners.csv", trialsCsv(trials));
   writeText(fs::path(settings.out) / "summary.csv", summaryCsv(rows));
@@ -755,7 +848,16 @@ int run(const Settings& settings) {
   printSummary(rows);
   std::printf("wrote %s and %s\n", (fs::path(settings.out) / "corners.csv").c_str(),
               (fs::path(settings.out) / "summary.csv").c_str());
-  return 0;
+  const auto missed = std::count_if(rows.begin(), rows.end(), [](const SummaryRow& r) { return r.met == "NO"; });
+  const auto overworked =
+      std::count_if(rows.begin(), rows.end(), [](const SummaryRow& r) { return !r.work_within_bounds; });
+  if (missed > 0) std::printf("%lld of the targets missed\n", static_cast<long long>(missed));
+  if (overworked > 0) {
+    std::printf("%lld rows with a grow past the work bounds (%g tests a point, %g cells per 1000 points)\n",
+                static_cast<long long>(overworked), settings.work_bounds.max_tests_per_point,
+                settings.work_bounds.max_cells_per_kpoint);
+  }
+  return missed > 0 || overworked > 0 ? 2 : 0;
 }
 
 }  // namespace
@@ -809,6 +911,18 @@ int main(int argc, char** argv) {
   app.add_option("--click", settings.click, "Click pattern: corner (0.1 m inside it) or wall (on a wall, 0.3 m from the corner's two others)")
       ->check(CLI::IsMember({"corner", "wall"}))
       ->capture_default_str();
+  app.add_option("--corners", settings.corners, "Click near the room's first N corners only")
+      ->check(CLI::Range(1u, 8u))
+      ->capture_default_str();
+  app.add_option("--known-shortfall", settings.known_shortfalls,
+                 "NOISE_MM:DETAIL:FACTOR:LOST: a target not met yet; its row passes with the median within FACTOR "
+                 "times the target and at most LOST corners lost (repeat for several rows)");
+  app.add_option("--max-tests-per-point", settings.work_bounds.max_tests_per_point,
+                 "Fail when a grow makes more point-to-plane tests than this per point it grows (0: no bound)")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--max-cells-per-kpoint", settings.work_bounds.max_cells_per_kpoint,
+                 "Fail when a grow visits more cells than this per 1000 points it grows (0: no bound)")
+      ->check(CLI::Range(0.0, 1e9));
   app.add_flag("--print-segments", settings.print_segments,
                "Print each grow's segments against the limit planes (to standard error)");
   CLI11_PARSE(app, argc, argv);

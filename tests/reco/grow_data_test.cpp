@@ -12,6 +12,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include <Eigen/Dense>
+
+#include "engine/io/point_reader.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree_builder.h"
 #include "reco/region_grower.h"
@@ -109,6 +112,113 @@ TEST(GrowRealData, AWallOfTheRoomScanIsVertical) {
   EXPECT_LT(tilt_deg, 1.0) << "normal " << wall->plane.normal.transpose();
   EXPECT_LT(wall->plane.distance(seed), 0.05);
   EXPECT_GT(wall->points, 100u);
+}
+
+// A plane fitted to `points` by least squares, independently of reco's regression: the centroid
+// and the covariance's eigenvector of the smallest eigenvalue (Eigen's solver).
+struct FittedPlane {
+  Eigen::Vector3d centroid;
+  Eigen::Vector3d normal;
+  double rms = 0;
+};
+FittedPlane leastSquaresPlane(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : points) scatter += (p - centroid) * (p - centroid).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter / static_cast<double>(points.size()));
+  return {centroid, eigen.eigenvectors().col(0), std::sqrt(std::max(eigen.eigenvalues()[0], 0.0))};
+}
+
+// pcl_room_scan1: a full-detail click on the wall near y = -1.46, against least squares done by
+// the test on its own (issue 25, point 3). The wall's points, chosen without the grower: every
+// point of the scan within 5 cm of the nominal wall y = -1.47 over the extent the grow covers
+// (x -2.6 to 4.8 m, z -1.3 to 1.68 m), refitted on those within 2 RMS of the last fit until the
+// furniture and the edges of the floor and ceiling are out. The grown segment must hold most of
+// them, and its plane must lie within 1 mm (at the click) and 0.1 degrees of the least-squares
+// plane of its points. The wall itself is not that flat: its points lie 9 mm RMS about their
+// plane where the scanner's noise is 3.5 mm, so planes fitted over other parts of it differ by
+// more (the grown plane and the box's are 0.2 degrees and 1.6 mm apart at the click, printed).
+TEST(GrowRealData, AWallClickMatchesTheLeastSquaresPlaneOfTheWall) {
+  PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
+  std::vector<Eigen::Vector3d> box;
+  {
+    const auto reader = io::openPointCloud(path);
+    io::PointBatch batch;
+    while (reader->read(batch, 65536)) {
+      for (const io::PointRecord& p : batch.points) {
+        if (p.x > -2.6 && p.x < 4.8 && p.z > -1.3 && p.z < 1.68 && std::abs(p.y + 1.47) < 0.05)
+          box.emplace_back(p.x, p.y, p.z);
+      }
+    }
+  }
+  ASSERT_GT(box.size(), 1000u);
+  FittedPlane wall = leastSquaresPlane(box);
+  std::vector<Eigen::Vector3d> wall_points;
+  for (int round = 0; round < 6; ++round) {
+    wall_points.clear();
+    for (const Eigen::Vector3d& p : box) {
+      if (std::abs(wall.normal.dot(p - wall.centroid)) < 2.0 * wall.rms) wall_points.push_back(p);
+    }
+    wall = leastSquaresPlane(wall_points);
+  }
+  std::printf("the wall: %zu of the box's %zu points, rms %.2f mm about their plane\n", wall_points.size(), box.size(),
+              wall.rms * 1e3);
+
+  test::TempDirectory dir;
+  lod::NodeCache cache(importScan(path, dir), 256 << 20);
+  const Eigen::Vector3d seed(-1.0, -1.46, 0.4);
+  GrowOptions options;
+  options.collect_members = true;
+  const GrowSnapshot result = growRegions(cache, fullDetailAt(cache.octree(), seed), options);
+  ASSERT_TRUE(result.converged);
+  const SegmentSnapshot* grown = segmentAt(result, seed);
+  ASSERT_NE(grown, nullptr);
+  std::vector<Eigen::Vector3d> members;
+  for (const lod::PointRef& ref : grown->members) {
+    const auto node = cache.get(cache.octree().nodes()[ref.node].key);
+    const auto position = node->position(ref.index);
+    members.emplace_back(position[0], position[1], position[2]);
+  }
+  ASSERT_EQ(members.size(), grown->points);
+
+  // The grow holds the wall: most of the wall's points are among its members (the octree keeps
+  // positions to well under a millimetre).
+  std::size_t held = 0;
+  {
+    const auto key = [](const Eigen::Vector3d& p, int dx, int dy, int dz) {
+      const auto cell = [](double v, int d) { return static_cast<std::int64_t>(std::floor(v * 1e3)) + d; };
+      return (cell(p.x(), dx) * 73856093) ^ (cell(p.y(), dy) * 19349663) ^ (cell(p.z(), dz) * 83492791);
+    };
+    std::unordered_multimap<std::int64_t, Eigen::Vector3d> by_millimetre;
+    for (const Eigen::Vector3d& m : members) by_millimetre.emplace(key(m, 0, 0, 0), m);
+    for (const Eigen::Vector3d& p : wall_points) {
+      bool found = false;
+      for (int dx = -1; dx <= 1 && !found; ++dx)
+        for (int dy = -1; dy <= 1 && !found; ++dy)
+          for (int dz = -1; dz <= 1 && !found; ++dz) {
+            const auto [first, last] = by_millimetre.equal_range(key(p, dx, dy, dz));
+            for (auto it = first; it != last && !found; ++it) found = (it->second - p).norm() < 0.001;
+          }
+      held += found ? 1 : 0;
+    }
+  }
+  std::printf("the grown segment: %zu points, %zu of the wall's (%.1f %%)\n", members.size(), held,
+              100.0 * static_cast<double>(held) / static_cast<double>(wall_points.size()));
+  EXPECT_GT(static_cast<double>(held), 0.8 * static_cast<double>(wall_points.size()));
+
+  const auto apart = [&](const FittedPlane& plane, const char* what) {
+    const double angle_deg = std::acos(std::min(1.0, std::abs(grown->plane.normal.dot(plane.normal)))) * 180.0 / M_PI;
+    const Eigen::Vector3d on_plane = seed - plane.normal.dot(seed - plane.centroid) * plane.normal;
+    const double offset_m = grown->plane.distance(on_plane);
+    std::printf("the grown plane against %s: %.4f degrees, %.3f mm at the click\n", what, angle_deg, offset_m * 1e3);
+    return std::pair{angle_deg, offset_m};
+  };
+  apart(wall, "the wall's least squares");
+  const auto [angle_deg, offset_m] = apart(leastSquaresPlane(members), "the least squares of its points");
+  EXPECT_LT(angle_deg, 0.1);
+  EXPECT_LT(offset_m, 0.001);
 }
 
 // The labelled points of nuist_commercial_street_facades.ply (binary little endian: float x, y, z,
