@@ -204,7 +204,7 @@ void DxfDocument::addFace(std::string_view layer, const Eigen::Vector3d& a, cons
 }
 
 void DxfDocument::addPolyline(std::string_view layer, std::span<const Eigen::Vector3d> ring,
-                              const Eigen::Vector3d& normal) {
+                              const Eigen::Vector3d& normal, bool closed) {
   assert(ring.size() >= 2 && "a polyline needs at least 2 vertices");
   const DxfOcs ocs = dxfOcs(normal);
   double elevation = 0.0;
@@ -213,7 +213,7 @@ void DxfDocument::addPolyline(std::string_view layer, std::span<const Eigen::Vec
 
   std::string out = entityStart("LWPOLYLINE", layer, "AcDbPolyline");
   putInt(out, 90, static_cast<long long>(ring.size()));
-  putInt(out, 70, 1);  // closed
+  putInt(out, 70, closed ? 1 : 0);
   putReal(out, 38, elevation);
   for (const Eigen::Vector3d& p : ring) {
     putReal(out, 10, ocs.x_axis.dot(p));

@@ -43,10 +43,12 @@ class DxfDocument {
   // Entities on `layer`, which must be one of the constructor's (asserted). Coordinates must be
   // finite (asserted).
   void addFace(std::string_view layer, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
-  // A closed LWPOLYLINE through `ring` (at least 2 vertices): its extrusion direction is the unit
-  // `normal`, its elevation the mean of the vertices' heights along it, its vertices their OCS x and
-  // y. A vertex off the plane by d moves onto it by d.
-  void addPolyline(std::string_view layer, std::span<const Eigen::Vector3d> ring, const Eigen::Vector3d& normal);
+  // A LWPOLYLINE through `ring` (at least 2 vertices), closed (the last vertex joins the first)
+  // unless `closed` is false: its extrusion direction is the unit `normal`, its elevation the mean
+  // of the vertices' heights along it, its vertices their OCS x and y. A vertex off the plane by d
+  // moves onto it by d.
+  void addPolyline(std::string_view layer, std::span<const Eigen::Vector3d> ring, const Eigen::Vector3d& normal,
+                   bool closed = true);
   void addLine(std::string_view layer, const Eigen::Vector3d& start, const Eigen::Vector3d& end);
   void addPoint(std::string_view layer, const Eigen::Vector3d& position);
 

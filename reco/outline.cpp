@@ -148,6 +148,24 @@ std::array<std::int64_t, 2> midpoint(std::uint32_t id, std::uint32_t width) {
 
 }  // namespace
 
+bool insideRing(std::span<const Eigen::Vector2d> ring, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const Eigen::Vector2d& a = ring[i];
+    const Eigen::Vector2d& b = ring[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+bool Outline::contains(const Eigen::Vector2d& p) const {
+  bool inside = false;
+  for (const auto& ring : rings) inside ^= insideRing(ring, p);
+  return inside;
+}
+
 Outline outlineOf(std::span<const Eigen::Vector2d> points, const OutlineOptions& options) {
   assert(options.alpha_m > 0.0 && options.cell_m > 0.0 && "outlineOf needs a positive alpha and cell size");
   assert(options.max_cells >= kMinCells && "max_cells below 64 cannot hold even a single point's raster");

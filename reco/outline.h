@@ -38,7 +38,14 @@ struct Outline {
   double cell_m = 0.0;                                  // the resolution actually used
   std::uint32_t raster_width_cells = 0;                 // the raster actually used, padding included
   std::uint32_t raster_height_cells = 0;
+
+  // Whether `p` lies in the region: inside an odd number of rings (holes lie inside their outer ring).
+  bool contains(const Eigen::Vector2d& p) const;
 };
+
+// Whether `p` lies inside the polygon `ring` (the last vertex joins the first), by the even-odd
+// rule; a point on an edge may go either way.
+bool insideRing(std::span<const Eigen::Vector2d> ring, const Eigen::Vector2d& p);
 
 // The alpha-shape-like outline of `points` (plane coordinates, metres; the caller projects).
 //

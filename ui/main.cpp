@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
 
   const std::vector<plumb::cli::Command> commands{
       plumb::cli::addExportCommand(plumb), plumb::cli::addGrowCommand(plumb),   plumb::cli::addImportCommand(plumb),
-      plumb::cli::addInfoCommand(plumb),   plumb::cli::addRenderCommand(plumb), plumb::cli::addSimulateCommand(plumb),
-      plumb::cli::addViewCommand(plumb)};
+      plumb::cli::addInfoCommand(plumb),   plumb::cli::addRenderCommand(plumb), plumb::cli::addSectionCommand(plumb),
+      plumb::cli::addSimulateCommand(plumb), plumb::cli::addViewCommand(plumb)};
 
   // CLI11 reports a mistyped command only as "A subcommand is required"; name it instead.
   std::string known;

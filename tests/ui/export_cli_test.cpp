@@ -1,37 +1,24 @@
 // plumb export as a user runs it: a project to glTF, OBJ, DXF and CSV, all of them or none.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <filesystem>
 
 #include "cad/project_file.h"
 #include "tests/cad/sample_project.h"
+#include "tests/support/plumb_command.h"
 #include "tests/support/temp_directory.h"
 
 namespace {
 
-struct Outcome {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
+using Outcome = plumb::test::CommandOutcome;
 
 class ExportCli : public ::testing::Test {
  protected:
   void SetUp() override { plumb::cad::writeProjectFile(plumb::cad::test::sampleProject(), project_); }
 
   // Runs `plumb export` with `arguments` (shell words).
-  Outcome plumbExport(const std::string& arguments) const {
-    const std::string out = temp_.file("stdout.txt"), err = temp_.file("stderr.txt");
-    const std::string command =
-        std::string(PLUMB_BINARY) + " export " + arguments + " </dev/null >" + out + " 2>" + err;
-    const int status = std::system(command.c_str());
-    Outcome run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, plumb::test::readFile(out), plumb::test::readFile(err)};
-    std::filesystem::remove(out);
-    std::filesystem::remove(err);
-    return run;
-  }
+  Outcome plumbExport(const std::string& arguments) const { return plumb::test::runPlumb(temp_, "export " + arguments); }
   std::string path(const std::string& name) const { return temp_.file(name); }
   std::string allFour() const {
     return " --gltf " + path("room.glb") + " --obj " + path("room.obj") + " --dxf " + path("room.dxf") + " --csv " +

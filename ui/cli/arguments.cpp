@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 #include "engine/core/error.h"
 
@@ -63,6 +64,12 @@ std::string withThousands(std::uint64_t value) {
     grouped.push_back(digits[i]);
   }
   return grouped;
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+  std::error_code ignored;
+  return std::filesystem::weakly_canonical(std::filesystem::absolute(a, ignored), ignored) ==
+         std::filesystem::weakly_canonical(std::filesystem::absolute(b, ignored), ignored);
 }
 
 }  // namespace plumb::cli

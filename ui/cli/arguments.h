@@ -17,4 +17,7 @@ CLI::Validator finiteIn(double min, double max);
 // 1234567 -> "1,234,567".
 std::string withThousands(std::uint64_t value);
 
+// Whether two paths name the same file, existing or not (an output must not overwrite an input).
+bool sameFile(const std::string& a, const std::string& b);
+
 }  // namespace plumb::cli

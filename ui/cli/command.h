@@ -23,6 +23,7 @@ Command addGrowCommand(CLI::App& plumb);
 Command addImportCommand(CLI::App& plumb);
 Command addInfoCommand(CLI::App& plumb);
 Command addRenderCommand(CLI::App& plumb);
+Command addSectionCommand(CLI::App& plumb);
 Command addViewCommand(CLI::App& plumb);
 
 }  // namespace plumb::cli

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cad/polygon_mesh.h"
+#include "reco/outline.h"
 #include "engine/ecs/registry.h"
 #include "ui/viewer/components.h"
 #include "ui/viewer/direction_finding.h"
@@ -71,18 +72,6 @@ std::vector<Eigen::Vector3d> rectangleOf(const Eigen::Vector3d& a, const Eigen::
   return {a, b, b + width, a + width};
 }
 
-bool insideScreenPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-
 double distanceToScreenSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
   const Eigen::Vector2d ab = b - a;
   const double t = ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
@@ -133,7 +122,7 @@ ecs::Entity polygonAt(const ecs::Registry& registry, const view::Camera& camera,
         depth += (vertex - camera.position).norm();
       }
       depth /= static_cast<double>(face.size());
-      bool near = insideScreenPolygon(screen, cursor);
+      bool near = reco::insideRing(screen, cursor);
       for (std::size_t i = 0; i < screen.size() && !near; ++i) {
         near = distanceToScreenSegment(screen[i], screen[(i + 1) % screen.size()], cursor) <= radius_px;
       }
