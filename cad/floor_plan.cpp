@@ -125,7 +125,12 @@ std::size_t joinCorners(std::vector<FaceLine>& faces, const FloorPlanOptions& op
     double ta, tb;
   };
   std::vector<Candidate> candidates;
-  std::vector<std::tuple<EndRef, std::size_t, double>> tees;  // an end, the face it meets, where
+  struct Tee {
+    double cost;  // how far the end moves
+    EndRef end;
+    double t;
+  };
+  std::vector<Tee> tees;
   const double min_angle = radians(options.min_join_angle_deg);
   for (std::size_t i = 0; i < faces.size(); ++i) {
     for (std::size_t j = i + 1; j < faces.size(); ++j) {
@@ -155,10 +160,10 @@ std::size_t joinCorners(std::vector<FaceLine>& faces, const FloorPlanOptions& op
         }
       }
       if (inside(i, ti)) {
-        for (const EndRef& b : ends_j) tees.emplace_back(b, i, tj);
+        for (const EndRef& b : ends_j) tees.push_back({std::abs(b.at(faces) - tj), b, tj});
       }
       if (inside(j, tj)) {
-        for (const EndRef& a : ends_i) tees.emplace_back(a, j, ti);
+        for (const EndRef& a : ends_i) tees.push_back({std::abs(a.at(faces) - ti), a, ti});
       }
     }
   }
@@ -174,10 +179,11 @@ std::size_t joinCorners(std::vector<FaceLine>& faces, const FloorPlanOptions& op
     moved[key(c.a)] = moved[key(c.b)] = true;
     ++joins;
   }
-  for (const auto& [end, face, t] : tees) {
-    if (moved[key(end)]) continue;
-    end.parameter(faces) = t;
-    moved[key(end)] = true;
+  std::stable_sort(tees.begin(), tees.end(), [](const Tee& x, const Tee& y) { return x.cost < y.cost; });
+  for (const Tee& tee : tees) {
+    if (moved[key(tee.end)]) continue;
+    tee.end.parameter(faces) = tee.t;
+    moved[key(tee.end)] = true;
   }
   // A join may turn a stretch around (both its ends moved past each other): drop it.
   for (FaceLine& face : faces) {
@@ -212,6 +218,61 @@ std::vector<PlanWall> pairFaces(const std::vector<FaceLine>& faces, const FloorP
     }
   }
   return walls;
+}
+
+// Where face `f`'s line crosses the plane of `face`, as a parameter along f; empty when parallel.
+std::optional<double> crossingPlane(const FaceLine& f, const Segment& face) {
+  const double along = face.plane.normal.dot(f.direction);
+  if (std::abs(along) < 1e-9) return std::nullopt;
+  return -face.plane.signedDistance(f.origin) / along;
+}
+
+// No face runs through the inside of a wall: the stretch of a face between a wall's two faces,
+// within the wall's length, is cut out. So a face that the grower carried on past a partition
+// (coplanar walls of two rooms, joined across the partition's end) is split into its rooms, and
+// each part meets its own room's walls.
+void cutInsideWalls(std::vector<FaceLine>& faces, const std::vector<PlanWall>& walls, const FloorPlanOptions& options) {
+  const auto face_of = [&](ItemId id) -> const FaceLine* {
+    for (const FaceLine& face : faces) {
+      if (face.segment->id == id) return &face;
+    }
+    return nullptr;
+  };
+  for (const PlanWall& wall : walls) {
+    const FaceLine* a = face_of(wall.face_a);
+    const FaceLine* b = face_of(wall.face_b);
+    // The wall's length: along a's line, over both faces' stretches.
+    double from = std::numeric_limits<double>::infinity(), to = -from;
+    for (const FaceLine* side : {a, b}) {
+      for (const auto& [t0, t1] : side->stretches) {
+        for (const double t : {t0, t1}) {
+          const double along = (side->origin + t * side->direction - a->origin).dot(a->direction);
+          from = std::min(from, along);
+          to = std::max(to, along);
+        }
+      }
+    }
+    for (FaceLine& face : faces) {
+      if (&face == a || &face == b) continue;
+      const auto ta = crossingPlane(face, *a->segment), tb = crossingPlane(face, *b->segment);
+      if (!ta || !tb) continue;
+      const double cut0 = std::min(*ta, *tb), cut1 = std::max(*ta, *tb);
+      const double along = (face.origin + 0.5 * (cut0 + cut1) * face.direction - a->origin).dot(a->direction);
+      // Beyond the wall's end the face passes it by; at the end (within its thickness: the points
+      // stop short of a corner) the face runs into the solid where the wall meets it.
+      if (along < from - wall.thickness_m || along > to + wall.thickness_m) continue;
+      std::vector<std::pair<double, double>> kept;
+      for (const auto& [t0, t1] : face.stretches) {
+        if (t1 <= cut0 || t0 >= cut1) {
+          kept.emplace_back(t0, t1);
+          continue;
+        }
+        if (cut0 - t0 >= options.min_line_m) kept.emplace_back(t0, cut0);
+        if (t1 - cut1 >= options.min_line_m) kept.emplace_back(cut1, t1);
+      }
+      face.stretches = std::move(kept);
+    }
+  }
 }
 
 // The lines chained at ends they share exactly (the joins put both ends on the same crossing).
@@ -278,8 +339,9 @@ FloorPlan floorPlanAt(const Project& project, const FloorPlanOptions& options) {
     faces.push_back(std::move(*line));
   }
   plan.wall_faces = faces.size();
-  plan.joins = joinCorners(faces, options);
   plan.walls = pairFaces(faces, options);
+  cutInsideWalls(faces, plan.walls, options);
+  plan.joins = joinCorners(faces, options);
   for (const FaceLine& face : faces) {
     for (const auto& [t0, t1] : face.stretches) {
       plan.lines.push_back({face.segment->id, face.origin + t0 * face.direction, face.origin + t1 * face.direction});

@@ -9,11 +9,15 @@
 //    the stretches inside it, by the even-odd rule over its rings. Gaps narrower than
 //    min_opening_m are closed (scan shadows, sparse points); wider ones are openings (a door or a
 //    window cut by the section).
-// 3. Faces meet at corners: where the lines of two faces that are not parallel cross within
+// 3. Two parallel faces min_thickness_m to max_thickness_m apart whose stretches overlap are the
+//    two faces of one wall, of the thickness measured between their planes. No other face runs
+//    through a wall: the stretch of a face between a wall's two faces is cut out (the grower may
+//    carry a face past a partition's end, into the next room, when the rooms' walls are coplanar).
+// 4. Faces meet at corners: where the lines of two faces that are not parallel cross within
 //    join_gap_m of an end of each, both ends move to the crossing, the intersection of the two
-//    wall planes. So the plan closes where the points stop short of a corner, as the planes do.
-// 4. Two parallel faces min_thickness_m to max_thickness_m apart whose stretches overlap are the
-//    two faces of one wall, of the thickness measured between their planes.
+//    wall planes, nearest pairs first. So the plan closes where the points stop short of a
+//    corner, as the planes do. An end near the middle of another face's stretch (an inner wall
+//    meeting an outer one) moves onto that face's line.
 //
 // The result's lines are chained at shared ends into polylines; a chain that returns to its start
 // is closed (a room's outline when every wall of it was grown).

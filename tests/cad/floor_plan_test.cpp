@@ -128,6 +128,26 @@ TEST(FloorPlan, AnInnerWallMeetsAnOuterWallsMiddle) {
   EXPECT_NEAR((plan.lines[0].end - plan.lines[0].start).norm(), 6.0, 1e-9) << "the outer wall unchanged";
 }
 
+// Two rooms side by side behind a partition 0.15 m thick, their back walls coplanar and grown as
+// one face across the partition's end: the plan cuts that face where it runs through the
+// partition, and each room closes on its own.
+TEST(FloorPlan, AFaceCarriedPastAPartitionIsCutWhereItRunsThroughIt) {
+  Project project;
+  project.segments.push_back(wallFace(1, {0, 0, 0}, {8.15, 0, 0}, {rectangle(0, 8.15, 0, 2.5)}));  // front, both
+  project.segments.push_back(wallFace(2, {8.15, 3, 0}, {0, 3, 0}, {rectangle(0, 8.15, 0, 2.5)}));  // back, both
+  project.segments.push_back(wallFace(3, {0, 3, 0}, {0, 0, 0}, {rectangle(0, 3, 0, 2.5)}));
+  project.segments.push_back(wallFace(4, {4, 0, 0}, {4, 3, 0}, {rectangle(0.05, 2.95, 0, 2.5)}));  // partition
+  project.segments.push_back(wallFace(5, {4.15, 3, 0}, {4.15, 0, 0}, {rectangle(0.05, 2.95, 0, 2.5)}));
+  project.segments.push_back(wallFace(6, {8.15, 0, 0}, {8.15, 3, 0}, {rectangle(0, 3, 0, 2.5)}));
+  const FloorPlan plan = floorPlanAt(project, {.height_m = kOffset.z() + kHeight});
+  ASSERT_EQ(plan.walls.size(), 1u);
+  EXPECT_NEAR(plan.walls[0].thickness_m, 0.15, 1e-9);
+  std::size_t closed = 0;
+  for (const PlanChain& chain : plan.chains) closed += chain.closed ? 1u : 0u;
+  EXPECT_EQ(closed, 2u);
+  EXPECT_EQ(plan.lines.size(), 8u) << "the front and back faces in two each";
+}
+
 TEST(FloorPlan, FloorsTiltedPlanesAndSegmentsWithoutOutlineAreNotWalls) {
   Project project = room(0.0);
   Segment floor;
