@@ -5,11 +5,13 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/io/byte_order.h"
+#include "reco/edges_and_corners.h"
 
 namespace plumb::test {
 
@@ -176,15 +178,9 @@ CornerLimit SimulatedTruth::cornerLimit(const Eigen::Vector3d& position) const {
     if ((corner.position - position).norm() > 1e-3) continue;
     const std::array<const reco::PlaneRegression*, 3> three{&fits_[corner.planes[0]], &fits_[corner.planes[1]],
                                                             &fits_[corner.planes[2]]};
-    Eigen::Matrix3d normals;
-    Eigen::Vector3d rhs;
-    for (int i = 0; i < 3; ++i) {
-      const reco::Plane plane = three[static_cast<std::size_t>(i)]->fit();
-      normals.row(i) = plane.normal.transpose();
-      rhs[i] = -plane.signedDistance(corner.position);
-    }
-    return {corner.position, corner.position + normals.inverse() * rhs,
-            cornerStandardError(three, corner.position)};
+    const std::optional<Eigen::Vector3d> fitted = reco::cornerOfPlanes(three[0]->fit(), three[1]->fit(), three[2]->fit());
+    if (!fitted) throw fileError(truth_path_, "the fitted planes of the corner asked do not meet");
+    return {corner.position, *fitted, cornerStandardError(three, corner.position)};
   }
   throw fileError(truth_path_, "has no corner at the position asked");
 }
