@@ -31,6 +31,7 @@ const uint kColourRgb = 0u;
 const uint kColourIntensity = 1u;
 const uint kColourElevation = 2u;
 const uint kColourSegment = 3u;
+const uint kColourScan = 4u;
 
 // One chunk of a node's points, as the splat and the resolve see it.
 struct SplatChunk {
@@ -38,9 +39,12 @@ struct SplatChunk {
   float depth_from_node[4];  // the row giving the view depth (metres in front of the eye)
   uint64_t points;           // device address of the chunk's first point
   uint64_t labels;           // device address of the chunk's first segment label (uint); 0: none
-  uint point_count;          // at most kChunkPoints
-  float elevation_offset;    // the node origin's z above ResolvePush's elevation base
-  uint point_size_px;        // each point covers a square of this side (1 to kMaxPointSize)
+  // Device address of the chunk's first scan index (16 bits each, two to a word; lod::NodePoints::scans);
+  // 0: the cloud is one scan. Chunks start at multiples of kChunkPoints, so it is word-aligned.
+  uint64_t scans;
+  uint point_count;        // at most kChunkPoints
+  float elevation_offset;  // the node origin's z above ResolvePush's elevation base
+  uint point_size_px;      // each point covers a square of this side (1 to kMaxPointSize)
   uint reserved;
 };
 

@@ -4,7 +4,7 @@
 //      nearest of them: this fills the one-pixel holes between a surface's points without
 //      growing silhouettes. The result goes to `resolved`, which picking and overlays read.
 //   2. The point's id leads to its chunk (render_layout.h) and its attributes, coloured
-//      by the colour mode: RGB, intensity (grey), elevation (a ramp) or segment (a palette).
+//      by the colour mode: RGB, intensity (grey), elevation (a ramp), segment or scan (a palette).
 //   3. Eye-dome lighting (Boucheny 2009, as in Potree): the pixel darkens by how much nearer its
 //      8 neighbours are, in log2 of the depth, which outlines edges and steps without normals.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -18,6 +18,7 @@ layout(local_size_x = kResolveGroupSize, local_size_y = kResolveGroupSize) in;
 layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Chunks { SplatChunk chunk[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Points { uint word[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Labels { uint label[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer ScanWords { uint word[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Visibility { uint64_t pixel[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) writeonly buffer Resolved { uint64_t pixel[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer Colour { uint pixel[]; };
@@ -56,7 +57,8 @@ vec3 elevationRamp(float t) {
   return mix(stops[i], stops[i + 1], x - float(i));
 }
 
-// Distinct colours for segment labels (0: no segment, grey): hues a golden angle apart.
+// Distinct colours for segment labels (0: no segment, grey) and scans (scan i as label i + 1):
+// hues a golden angle apart. engine/render/palette.h computes the same colours for legends.
 vec3 segmentColour(uint label) {
   if (label == 0u) return vec3(0.55);
   const float hue = fract(float(label) * 0.618034);
@@ -65,7 +67,7 @@ vec3 segmentColour(uint label) {
 }
 
 vec3 pointColour(uint id) {
-  // Only the members needed: a whole SplatChunk is 112 bytes.
+  // Only the members needed: a whole SplatChunk is 120 bytes.
   Chunks chunks = Chunks(push.chunks);
   const uint c = id >> kChunkBits;
   const uint local = id & (kChunkPoints - 1u);
@@ -83,6 +85,11 @@ vec3 pointColour(uint id) {
     case kColourElevation: {
       const float z = chunks.chunk[c].elevation_offset + uintBitsToFloat(points.word[w + 2]);
       return elevationRamp((z - push.elevation_min) / max(push.elevation_max - push.elevation_min, 1e-6));
+    }
+    case kColourScan: {
+      const uint64_t scans = chunks.chunk[c].scans;
+      const uint scan = scans == 0 ? 0u : (ScanWords(scans).word[local >> 1] >> ((local & 1u) * 16u)) & 0xFFFFu;
+      return segmentColour(scan + 1u);
     }
     default: {
       const uint64_t labels = chunks.chunk[c].labels;

@@ -29,8 +29,6 @@
 //   5. The scans one after another, as one cloud. The record counts are checked: a section that
 //      ends before its records do is truncated.
 
-#include <pugixml.hpp>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -41,6 +39,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <pugixml.hpp>
 #include <string_view>
 
 #include "engine/io/byte_order.h"
@@ -156,7 +155,8 @@ struct Field {
       case Encoding::kScaledInteger:
         return std::pair{static_cast<double>(minimum) * scale + offset, static_cast<double>(maximum) * scale + offset};
       case Encoding::kFloat:
-        if (std::abs(float_minimum) < 1e30 && std::abs(float_maximum) < 1e30) return std::pair{float_minimum, float_maximum};
+        if (std::abs(float_minimum) < 1e30 && std::abs(float_maximum) < 1e30)
+          return std::pair{float_minimum, float_maximum};
         return std::nullopt;
       case Encoding::kString:
         return std::nullopt;
@@ -167,28 +167,42 @@ struct Field {
 
 // What a field means to Plumb.
 enum class Role {
-  kX, kY, kZ, kRange, kAzimuth, kElevation, kCartesianInvalid, kSphericalInvalid,
-  kIntensity, kIntensityInvalid, kRed, kGreen, kBlue, kColourInvalid, kNormalX, kNormalY, kNormalZ,
+  kX,
+  kY,
+  kZ,
+  kRange,
+  kAzimuth,
+  kElevation,
+  kCartesianInvalid,
+  kSphericalInvalid,
+  kIntensity,
+  kIntensityInvalid,
+  kRed,
+  kGreen,
+  kBlue,
+  kColourInvalid,
+  kNormalX,
+  kNormalY,
+  kNormalZ,
   kIgnored
 };
 constexpr std::size_t kRoles = static_cast<std::size_t>(Role::kIgnored);
 
 Role roleOf(const std::string& name) {
-  static const std::map<std::string_view, Role> roles{
-      {"cartesianX", Role::kX},
-      {"cartesianY", Role::kY},
-      {"cartesianZ", Role::kZ},
-      {"sphericalRange", Role::kRange},
-      {"sphericalAzimuth", Role::kAzimuth},
-      {"sphericalElevation", Role::kElevation},
-      {"cartesianInvalidState", Role::kCartesianInvalid},
-      {"sphericalInvalidState", Role::kSphericalInvalid},
-      {"intensity", Role::kIntensity},
-      {"isIntensityInvalid", Role::kIntensityInvalid},
-      {"colorRed", Role::kRed},
-      {"colorGreen", Role::kGreen},
-      {"colorBlue", Role::kBlue},
-      {"isColorInvalid", Role::kColourInvalid}};
+  static const std::map<std::string_view, Role> roles{{"cartesianX", Role::kX},
+                                                      {"cartesianY", Role::kY},
+                                                      {"cartesianZ", Role::kZ},
+                                                      {"sphericalRange", Role::kRange},
+                                                      {"sphericalAzimuth", Role::kAzimuth},
+                                                      {"sphericalElevation", Role::kElevation},
+                                                      {"cartesianInvalidState", Role::kCartesianInvalid},
+                                                      {"sphericalInvalidState", Role::kSphericalInvalid},
+                                                      {"intensity", Role::kIntensity},
+                                                      {"isIntensityInvalid", Role::kIntensityInvalid},
+                                                      {"colorRed", Role::kRed},
+                                                      {"colorGreen", Role::kGreen},
+                                                      {"colorBlue", Role::kBlue},
+                                                      {"isColorInvalid", Role::kColourInvalid}};
   if (const auto it = roles.find(name); it != roles.end()) return it->second;
   // The surface normals extension (libE57Format's E57_EXT_surface_normals), whatever its prefix.
   const std::size_t colon = name.find(':');
@@ -210,6 +224,7 @@ unsigned bitsFor(std::int64_t minimum, std::int64_t maximum) {
 using Limits = std::optional<std::pair<double, double>>;
 
 struct Scan {
+  std::string name;   // its name, else "data3D[i]"
   std::string label;  // "data3D[i] 'name'" for messages
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
@@ -242,8 +257,8 @@ void flattenPrototype(const XmlReader& xml, const pugi::xml_node& node, const st
     field.minimum = xml.attributeInteger(node, "minimum", path, std::numeric_limits<std::int64_t>::min());
     field.maximum = xml.attributeInteger(node, "maximum", path, std::numeric_limits<std::int64_t>::max());
     if (field.minimum > field.maximum) {
-      throw xml.error(path, "minimum " + std::to_string(field.minimum) + " above maximum " +
-                                std::to_string(field.maximum));
+      throw xml.error(path,
+                      "minimum " + std::to_string(field.minimum) + " above maximum " + std::to_string(field.maximum));
     }
     field.bits = bitsFor(field.minimum, field.maximum);
     if (type == "ScaledInteger") {
@@ -258,7 +273,8 @@ void flattenPrototype(const XmlReader& xml, const pugi::xml_node& node, const st
       throw xml.error(path, "precision '" + precision + "', expected single or double");
     }
     field.single_precision = precision == "single";
-    const double largest = field.single_precision ? std::numeric_limits<float>::max() : std::numeric_limits<double>::max();
+    const double largest =
+        field.single_precision ? std::numeric_limits<float>::max() : std::numeric_limits<double>::max();
     field.float_minimum = xml.attributeNumber(node, "minimum", path, -largest);
     field.float_maximum = xml.attributeNumber(node, "maximum", path, largest);
     field.bits = field.single_precision ? 32 : 64;
@@ -283,6 +299,7 @@ Scan readScan(const XmlReader& xml, const pugi::xml_node& node, std::size_t inde
   Scan scan;
   const std::string name = node.child("name").child_value();
   scan.label = "data3D[" + std::to_string(index) + "]" + (name.empty() ? "" : " '" + name + "'");
+  scan.name = name.empty() ? "data3D[" + std::to_string(index) + "]" : name;
   if (const pugi::xml_node pose = node.child("pose")) {
     xml.typeOf(pose, path + "/pose", "Structure");
     if (const pugi::xml_node rotation = pose.child("rotation")) {
@@ -295,8 +312,8 @@ Scan readScan(const XmlReader& xml, const pugi::xml_node& node, std::size_t inde
       const double norm = std::sqrt(w * w + x * x + y * y + z * z);
       // The standard asks for a unit quaternion; writers round. Far from unit is an error.
       if (std::abs(norm - 1.0) > 1e-3) {
-        throw xml.error(at, "the rotation (" + std::to_string(w) + ", " + std::to_string(x) + ", " +
-                                std::to_string(y) + ", " + std::to_string(z) + ") is not a unit quaternion");
+        throw xml.error(at, "the rotation (" + std::to_string(w) + ", " + std::to_string(x) + ", " + std::to_string(y) +
+                                ", " + std::to_string(z) + ") is not a unit quaternion");
       }
       scan.rotation = Eigen::Quaterniond(w / norm, x / norm, y / norm, z / norm);
     }
@@ -466,6 +483,10 @@ class E57Reader final : public PointReader {
       xml.typeOf(data3d, "/data3D", "Vector");
       for (const pugi::xml_node& child : data3d.children()) {
         if (child.type() != pugi::node_element) continue;
+        // PointRecord::scan is 16 bits.
+        if (scans_.size() > std::numeric_limits<std::uint16_t>::max()) {
+          throw xml.error("/data3D", "more than 65536 scans; Plumb keeps at most 65536 per cloud");
+        }
         scans_.push_back(readScan(xml, child, scans_.size()));
         declared += scans_.back().records;
       }
@@ -478,6 +499,7 @@ class E57Reader final : public PointReader {
     info_.format = "E57 " + std::to_string(file_.versionMajor()) + "." + std::to_string(file_.versionMinor()) + ", " +
                    std::to_string(scans_.size()) + (scans_.size() == 1 ? " scan" : " scans");
     info_.declared_points = declared;
+    for (const Scan& scan : scans_) info_.scans.push_back(scan.name);
     auto all = [&](Role role) {
       return !scans_.empty() && std::all_of(scans_.begin(), scans_.end(), [&](const Scan& s) { return s.has(role); });
     };
@@ -505,8 +527,8 @@ class E57Reader final : public PointReader {
     batch.clear();
     while (batch.size() < max_points) {
       if (next_pending_ < pending_.size()) {
-        deliver(batch, pending_[next_pending_], info_.attributes.normals ? pending_normals_[next_pending_]
-                                                                          : std::array<float, 3>{});
+        deliver(batch, pending_[next_pending_],
+                info_.attributes.normals ? pending_normals_[next_pending_] : std::array<float, 3>{});
         ++next_pending_;
         continue;
       }
@@ -516,7 +538,9 @@ class E57Reader final : public PointReader {
   }
 
  private:
-  static bool isColour(Role role) { return role == Role::kRed || role == Role::kGreen || role == Role::kBlue || role == Role::kColourInvalid; }
+  static bool isColour(Role role) {
+    return role == Role::kRed || role == Role::kGreen || role == Role::kBlue || role == Role::kColourInvalid;
+  }
   static bool isIntensity(Role role) { return role == Role::kIntensity || role == Role::kIntensityInvalid; }
   static bool isNormal(Role role) { return role == Role::kNormalX || role == Role::kNormalY || role == Role::kNormalZ; }
 
@@ -559,15 +583,15 @@ class E57Reader final : public PointReader {
     file_.read(start, header, what + " header");
     const auto id = std::to_integer<unsigned>(header[0]);
     if (id != 1) {
-      throw file_.errorAt(scan.section_offset, what + " header: section id " + std::to_string(id) +
-                                                   ", where a compressed vector has 1");
+      throw file_.errorAt(scan.section_offset,
+                          what + " header: section id " + std::to_string(id) + ", where a compressed vector has 1");
     }
     const auto length = loadLittleEndian<std::uint64_t>(header.data() + 8);
     const auto data_offset = loadLittleEndian<std::uint64_t>(header.data() + 16);
     section_end_ = start + length;
     if (length < header.size() || section_end_ > file_.logicalLength() || section_end_ < start) {
-      throw file_.errorAt(scan.section_offset + 8, what + ": its length " + std::to_string(length) +
-                                                       " runs past the end of the file");
+      throw file_.errorAt(scan.section_offset + 8,
+                          what + ": its length " + std::to_string(length) + " runs past the end of the file");
     }
     if (scan.records == 0) return;  // writers leave the data offset of an empty section at 0
     // Each record takes at least the bits of its fields: a count the section cannot hold is
@@ -592,9 +616,9 @@ class E57Reader final : public PointReader {
   void readPacket(const Scan& scan) {
     const std::string what = scan.label + "'s packet";
     if (packet_ + 4 > section_end_) {
-      throw file_.errorAtLogical(std::min(packet_, section_end_),
-                                 "truncated: " + scan.label + " ends after " + std::to_string(decoded_) + " of " +
-                                     std::to_string(scan.records) + " records");
+      throw file_.errorAtLogical(std::min(packet_, section_end_), "truncated: " + scan.label + " ends after " +
+                                                                      std::to_string(decoded_) + " of " +
+                                                                      std::to_string(scan.records) + " records");
     }
     std::array<std::byte, 4> head;
     file_.read(packet_, head, what + " header");
@@ -655,7 +679,7 @@ class E57Reader final : public PointReader {
                  range * std::sin(elevation)};
       }
       const Eigen::Vector3d world = rotation * local + scan.translation;
-      PointRecord point{world.x(), world.y(), world.z(), {0, 0, 0}, 0};
+      PointRecord point{world.x(), world.y(), world.z(), {0, 0, 0}, 0, static_cast<std::uint16_t>(scan_)};
       if (info_.attributes.intensity && !(scan.has(Role::kIntensityInvalid) && value(Role::kIntensityInvalid) != 0.0)) {
         point.intensity = normalised(value(Role::kIntensity), scan.intensity_limits, scan, Role::kIntensity);
       }
@@ -669,8 +693,8 @@ class E57Reader final : public PointReader {
       if (info_.attributes.normals) {
         const Eigen::Vector3d normal =
             rotation * Eigen::Vector3d(value(Role::kNormalX), value(Role::kNormalY), value(Role::kNormalZ));
-        pending_normals_.push_back({static_cast<float>(normal.x()), static_cast<float>(normal.y()),
-                                    static_cast<float>(normal.z())});
+        pending_normals_.push_back(
+            {static_cast<float>(normal.x()), static_cast<float>(normal.y()), static_cast<float>(normal.z())});
       }
     }
     decoded_ += n;

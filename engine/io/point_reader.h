@@ -26,6 +26,7 @@ struct PointRecord {
   double x, y, z;
   std::array<std::uint16_t, 3> rgb;
   std::uint16_t intensity;
+  std::uint16_t scan = 0;  // the scan of the file it belongs to (CloudInfo::scans); 0 where a file is one scan
 
   bool hasFinitePosition() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 };
@@ -61,11 +62,14 @@ struct CloudInfo {
   PointAttributes attributes;
   // Properties or fields present in the file but not kept, e.g. "label (int)".
   std::vector<std::string> ignored_fields;
+  // The names of the scans the file holds (E57: one per data3D), in the order of
+  // PointRecord::scan; empty for formats that hold one scan.
+  std::vector<std::string> scans;
 };
 
 // What reading found, growing as batches are read.
 struct ReadCounts {
-  std::uint64_t delivered = 0;   // points handed out
+  std::uint64_t delivered = 0;  // points handed out
   // Skipped: no valid position. A NaN or infinite coordinate (organized PCD's invalid pixels
   // too), or a point the file marks invalid (E57's invalid states).
   std::uint64_t non_finite = 0;

@@ -43,7 +43,7 @@ class CopcStorage final : public OctreeStorage {
     chunk.points = node.point_count;
     std::vector<io::PointRecord> records;
     file_->readNode(chunk, records);
-    NodePoints result{node.key, cube_.cellMin(node.key), {}};
+    NodePoints result{node.key, cube_.cellMin(node.key), {}, {}};
     result.points.reserve(records.size());
     for (const io::PointRecord& r : records) {
       // Relative to the cell's corner, so that floats keep the LAS scale's precision far from the

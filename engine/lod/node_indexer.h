@@ -21,13 +21,14 @@
 
 namespace plumb::lod {
 
-// A point while the octree is built: absolute coordinates and attributes, 32 bytes.
+// A point while the octree is built: absolute coordinates and attributes, 40 bytes.
 struct BuildPoint {
   double x, y, z;
   std::array<std::uint16_t, 3> rgb;
   std::uint16_t intensity;
+  std::uint16_t scan;  // index into the octree's scans (0 when the cloud has a single scan)
 };
-static_assert(sizeof(BuildPoint) == 32);
+static_assert(sizeof(BuildPoint) == 40);
 
 using Position = std::array<double, 3>;
 

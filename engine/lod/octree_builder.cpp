@@ -13,7 +13,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <thread>
 #include <unordered_map>
@@ -35,7 +38,7 @@ constexpr std::size_t kCountCells = std::size_t{1} << (3 * kCountLevel);
 // Bytes a point costs while its chunk is indexed: the point, the indexer's per-point scratch
 // (partition flag, octant, cell, hash, order), slack for vector growth. The indexer's grid
 // scratch (8 MB per thread) comes on top.
-constexpr std::size_t kIndexBytesPerPoint = 64;
+constexpr std::size_t kIndexBytesPerPoint = 72;
 constexpr std::size_t kIndexerScratchBytes = std::size_t{24} << 20;
 constexpr std::size_t kChunkBufferPoints = 8192;  // 256 KB of buffered writes per chunk
 // Smaller chunks than this are not worth a task of their own.
@@ -177,6 +180,7 @@ class Builder {
  private:
   // A batch of input points with what the parallel stage worked out about them.
   struct Batch {
+    std::size_t source = 0;  // index of the input it came from
     io::PointBatch points;
     std::vector<std::uint32_t> cells;  // counting-grid cell of each point
     Box3 box{};                        // bounds of the batch
@@ -199,7 +203,8 @@ class Builder {
     std::mutex free_mutex;
 
     std::uint64_t done = 0;
-    for (const BuildSource& source : options_.sources) {
+    for (std::size_t s = 0; s < options_.sources.size(); ++s) {
+      const BuildSource& source = options_.sources[s];
       const std::unique_ptr<io::PointReader> reader = source.open();
       tbb::parallel_pipeline(
           kLiveBatches,
@@ -216,6 +221,7 @@ class Builder {
               control.stop();
               return nullptr;
             }
+            batch->source = s;
             return batch;
           }) & tbb::make_filter<Batch*, Batch*>(tbb::filter_mode::parallel, [&](Batch* batch) {
             prepare(*batch);
@@ -239,14 +245,38 @@ class Builder {
     }
   }
 
-  // What a reader reports once its input is read: skipped points, attributes, ignored fields.
-  // Collected in the bounds pass only, which reads every input first.
+  // What a reader reports once its input is read: skipped points, attributes, ignored fields,
+  // scans. Collected in the bounds pass only, which reads every input first.
   void collectInputFacts(const BuildSource& source, const io::PointReader& reader) {
     header_.skipped_non_finite += reader.counts().non_finite;
     if (reader.info().attributes.colour) header_.attributes |= kHasColour;
     if (reader.info().attributes.intensity) header_.attributes |= kHasIntensity;
     for (const std::string& field : reader.info().ignored_fields)
       report_.ignored_fields.push_back(source.name + ": " + field);
+    // Each input's scans follow the previous inputs' in the cloud's scan index, named by the
+    // input's file name (its folder would only repeat).
+    first_scan_.push_back(header_.scans.size());
+    const std::string file = std::filesystem::path(source.name).filename().string();
+    if (reader.info().scans.empty()) {
+      header_.scans.push_back(file);
+    } else {
+      for (const std::string& scan : reader.info().scans) header_.scans.push_back(file + ": " + scan);
+    }
+  }
+
+  // A cloud of several scans keeps each point's scan (kHasScanIndex); one of a single scan has
+  // nothing to tell apart.
+  void settleScans() {
+    if (header_.scans.size() > std::size_t{std::numeric_limits<std::uint16_t>::max()} + 1) {
+      throw Error("the inputs hold " + std::to_string(header_.scans.size()) +
+                  " scans; an octree keeps at most 65536 (import them in parts)");
+    }
+    if (header_.scans.size() < 2) {
+      header_.scans.clear();
+      return;
+    }
+    header_.attributes |= kHasScanIndex;
+    header_.scan_count = static_cast<std::uint32_t>(header_.scans.size());
   }
 
   void scanBounds() {
@@ -281,6 +311,7 @@ class Builder {
     }
     header_.point_count = count;
     header_.input_files = static_cast<std::uint32_t>(options_.sources.size());
+    settleScans();
 
     // A cube a hair larger than the bounds, so the farthest points stay inside.
     double extent = 0.0;
@@ -378,9 +409,11 @@ class Builder {
           for (std::size_t c = 0; c < chunk_count; ++c) starts[c + 1] += starts[c];
           batch.by_chunk.resize(batch.cells.size());
           std::vector<std::size_t> next(starts.begin(), starts.end() - 1);
+          const std::size_t first_scan = first_scan_[batch.source];
           for (std::size_t i = 0; i < batch.cells.size(); ++i) {
             const io::PointRecord& p = batch.points.points[i];
-            batch.by_chunk[next[batch.cells[i]]++] = {p.x, p.y, p.z, p.rgb, p.intensity};
+            const auto scan = static_cast<std::uint16_t>(header_.scan_count > 0 ? first_scan + p.scan : 0);
+            batch.by_chunk[next[batch.cells[i]]++] = {p.x, p.y, p.z, p.rgb, p.intensity, scan};
           }
         },
         [&](const Batch& batch) {
@@ -432,12 +465,17 @@ class Builder {
 
   void writeNode(const CellKey& key, std::span<const BuildPoint> points, std::uint8_t child_mask) {
     const std::array<double, 3> origin = header_.cube.cellMin(key);
-    std::vector<std::byte> block(points.size() * kPointBytes);
+    std::vector<std::byte> block(nodeBlockBytes(points.size(), header_.attributes));
     for (std::size_t i = 0; i < points.size(); ++i) {
       const BuildPoint& p = points[i];
       encodePoint({static_cast<float>(p.x - origin[0]), static_cast<float>(p.y - origin[1]),
                    static_cast<float>(p.z - origin[2]), p.rgb, p.intensity},
                   block.data() + i * kPointBytes);
+    }
+    if (header_.attributes & kHasScanIndex) {
+      std::byte* scans = block.data() + points.size() * kPointBytes;
+      for (std::size_t i = 0; i < points.size(); ++i)
+        std::memcpy(scans + i * kScanIndexBytes, &points[i].scan, kScanIndexBytes);
     }
     NodeInfo node{key, static_cast<std::uint32_t>(points.size()), crc32Of(block), 0, child_mask};
     const std::lock_guard lock(output_mutex_);
@@ -524,6 +562,13 @@ class Builder {
     header_.index_bytes = index.size();
     header_.index_crc = crc32Of(index);
     output.write(index);
+    if (header_.scan_count > 0) {
+      const std::vector<std::byte> table = encodeScanTable(header_.scans);
+      header_.scan_table_offset = output.size();
+      header_.scan_table_bytes = table.size();
+      header_.scan_table_crc = crc32Of(table);
+      output.write(table);
+    }
     output.overwrite(0, encodeHeader(header_));
     output.commit();
 
@@ -531,7 +576,8 @@ class Builder {
     report_.skipped_non_finite = header_.skipped_non_finite;
     report_.nodes = nodes_.size();
     report_.depth = header_.depth;
-    report_.file_bytes = header_.index_offset + header_.index_bytes;
+    report_.file_bytes = output.size();
+    report_.scans = header_.scans;
   }
 
   struct ChunkRoot {
@@ -551,6 +597,7 @@ class Builder {
   std::mutex output_mutex_;
   std::vector<NodeInfo> nodes_;
   std::uint64_t indexed_points_ = 0;
+  std::vector<std::size_t> first_scan_;  // per input: the index of its first scan
 };
 
 }  // namespace

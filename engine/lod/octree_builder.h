@@ -57,6 +57,7 @@ struct BuildReport {
   unsigned index_threads = 0;
   std::uint64_t file_bytes = 0;
   std::vector<std::string> ignored_fields;  // "<input>: <field>"
+  std::vector<std::string> scans;           // the scans each point keeps the index of; empty: one scan
   double seconds_bounds = 0, seconds_counting = 0, seconds_distributing = 0, seconds_indexing = 0;
 };
 

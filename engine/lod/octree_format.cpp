@@ -78,6 +78,10 @@ std::array<std::byte, kHeaderBytes> encodeHeader(const OctreeHeader& h) {
   w.put(h.index_bytes);
   w.put(h.index_crc);
   w.put(h.input_files);
+  w.put(h.scan_table_offset);
+  w.put(h.scan_table_bytes);
+  w.put(h.scan_table_crc);
+  w.put(h.scan_count);
   const std::uint32_t crc = crc32Of(std::span(bytes).first(kHeaderCrcOffset));
   std::memcpy(bytes.data() + kHeaderCrcOffset, &crc, 4);
   return bytes;
@@ -94,7 +98,9 @@ OctreeHeader decodeHeader(std::span<const std::byte, kHeaderBytes> bytes, const 
                       "octree format version " + std::to_string(version) + " is newer than this Plumb (" +
                           std::to_string(kOctreeVersion) + "); update Plumb");
   }
-  if (version != kOctreeVersion) throw fileErrorAt(path, 8, "unknown octree format version " + std::to_string(version));
+  if (version < kOldestOctreeVersion) {
+    throw fileErrorAt(path, 8, "unknown octree format version " + std::to_string(version));
+  }
   if (r.get<std::uint32_t>() != kHeaderBytes) throw fileErrorAt(path, 12, "unexpected header size");
   std::uint32_t stored_crc = 0;
   std::memcpy(&stored_crc, bytes.data() + kHeaderCrcOffset, 4);
@@ -102,6 +108,7 @@ OctreeHeader decodeHeader(std::span<const std::byte, kHeaderBytes> bytes, const 
     throw fileErrorAt(path, 0, "the header is corrupt (checksum mismatch); rebuild the octree with 'plumb import'");
   }
   OctreeHeader h;
+  h.version = version;
   h.point_count = r.get<std::uint64_t>();
   h.node_count = r.get<std::uint64_t>();
   for (double& v : h.cube.origin) v = r.get<double>();
@@ -118,6 +125,15 @@ OctreeHeader decodeHeader(std::span<const std::byte, kHeaderBytes> bytes, const 
   h.index_bytes = r.get<std::uint64_t>();
   h.index_crc = r.get<std::uint32_t>();
   h.input_files = r.get<std::uint32_t>();
+  // Version 1 wrote zeros here.
+  h.scan_table_offset = r.get<std::uint64_t>();
+  h.scan_table_bytes = r.get<std::uint64_t>();
+  h.scan_table_crc = r.get<std::uint32_t>();
+  h.scan_count = r.get<std::uint32_t>();
+  const bool scan_index = (h.attributes & kHasScanIndex) != 0;
+  if (scan_index != (h.scan_count > 0) || (version < 2 && scan_index)) {
+    throw fileErrorAt(path, 80, "corrupt header: the scan index flag and the scan count disagree");
+  }
   return h;
 }
 
@@ -134,7 +150,7 @@ void encodeIndexEntry(const NodeInfo& node, std::byte* out) {
   for (int i = 0; i < 7; ++i) w.put(std::uint8_t{0});
 }
 
-NodeInfo decodeIndexEntry(const std::byte* in) {
+NodeInfo decodeIndexEntry(const std::byte* in, std::uint32_t attributes) {
   Reader r(in);
   NodeInfo node;
   node.key.level = r.get<std::uint32_t>();
@@ -145,8 +161,43 @@ NodeInfo decodeIndexEntry(const std::byte* in) {
   node.crc = r.get<std::uint32_t>();
   node.offset = r.get<std::uint64_t>();
   node.child_mask = r.get<std::uint8_t>();
-  node.bytes = std::uint64_t{node.point_count} * kPointBytes;
+  node.bytes = nodeBlockBytes(node.point_count, attributes);
   return node;
+}
+
+std::vector<std::byte> encodeScanTable(const std::vector<std::string>& names) {
+  std::size_t size = 0;
+  for (const std::string& name : names) size += 4 + name.size();
+  std::vector<std::byte> bytes(size);
+  std::byte* out = bytes.data();
+  for (const std::string& name : names) {
+    const auto length = static_cast<std::uint32_t>(name.size());
+    std::memcpy(out, &length, 4);
+    std::memcpy(out + 4, name.data(), name.size());
+    out += 4 + name.size();
+  }
+  return bytes;
+}
+
+std::vector<std::string> decodeScanTable(std::span<const std::byte> bytes, std::uint32_t count, const std::string& path,
+                                         std::uint64_t offset) {
+  std::vector<std::string> names;
+  std::size_t at = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (bytes.size() - at < 4)
+      throw fileErrorAt(path, offset + at, "corrupt scan table: it ends before scan " + std::to_string(i));
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + at, 4);
+    if (bytes.size() - at - 4 < length) {
+      throw fileErrorAt(path, offset + at,
+                        "corrupt scan table: the name of scan " + std::to_string(i) + " (" + std::to_string(length) +
+                            " bytes) runs past the table");
+    }
+    names.emplace_back(reinterpret_cast<const char*>(bytes.data() + at + 4), length);
+    at += 4 + length;
+  }
+  if (at != bytes.size()) throw fileErrorAt(path, offset + at, "corrupt scan table: bytes after its last scan");
+  return names;
 }
 
 void encodePoint(const PackedPoint& p, std::byte* out) {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,12 +21,17 @@ struct NodePoints {
   CellKey key;
   std::array<double, 3> origin;
   std::vector<PackedPoint> points;
+  // The scan of each point (an index into OctreeHeader::scans) where the cloud has a scan index
+  // (kHasScanIndex), else empty.
+  std::vector<std::uint16_t> scans;
 
   std::size_t size() const { return points.size(); }
   std::array<double, 3> position(std::size_t i) const {
     return {origin[0] + points[i].x, origin[1] + points[i].y, origin[2] + points[i].z};
   }
-  std::size_t bytes() const { return sizeof(NodePoints) + points.capacity() * sizeof(PackedPoint); }
+  std::size_t bytes() const {
+    return sizeof(NodePoints) + points.capacity() * sizeof(PackedPoint) + scans.capacity() * sizeof(std::uint16_t);
+  }
 };
 
 class OctreeStorage {

@@ -30,10 +30,13 @@ const GpuNode* GpuNodeCache::use(const lod::CellKey& key, std::uint64_t frame) {
 const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, VkCommandBuffer commands, gpu::UploadRing& ring,
                                     std::uint64_t frame) {
   if (points.points.empty()) return nullptr;  // the renderer skips empty nodes (COPC has some)
-  const VkDeviceSize bytes = points.points.size() * sizeof(lod::PackedPoint);
+  assert((points.scans.empty() || points.scans.size() == points.points.size()) && "a scan index per point, or none");
+  const VkDeviceSize point_bytes = points.points.size() * sizeof(lod::PackedPoint);
+  const VkDeviceSize bytes = point_bytes + points.scans.size() * sizeof(std::uint16_t);
   const std::optional<gpu::UploadSpan> span = ring.allocate(bytes);
   if (!span) return nullptr;
-  std::memcpy(span->data, points.points.data(), bytes);
+  std::memcpy(span->data, points.points.data(), point_bytes);
+  if (!points.scans.empty()) std::memcpy(span->data + point_bytes, points.scans.data(), bytes - point_bytes);
 
   const std::string name = "node " + std::to_string(points.key.level) + "/" + std::to_string(points.key.x) + "/" +
                            std::to_string(points.key.y) + "/" + std::to_string(points.key.z);
@@ -42,6 +45,7 @@ const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, VkCommandBuff
       gpu::Buffer(device_, allocator_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                   gpu::kDeviceMemory, name.c_str());
   node.point_count = static_cast<std::uint32_t>(points.points.size());
+  node.scans_offset = points.scans.empty() ? 0 : point_bytes;
   const VkBufferCopy copy{span->offset, 0, bytes};
   vkCmdCopyBuffer(commands, ring.buffer(), node.points.handle(), 1, &copy);
 

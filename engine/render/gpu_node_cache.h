@@ -1,5 +1,6 @@
 #pragma once
-// The octree nodes resident on the GPU: one device-local buffer of lod::PackedPoint per node,
+// The octree nodes resident on the GPU: one device-local buffer of lod::PackedPoint per node
+// (followed by the points' 16-bit scan indices where the cloud has them),
 // filled through the upload ring, evicted least-recently-used beyond a byte budget. Evicted
 // buffers go through the deletion queue, so a frame in flight keeps what it draws. Nodes in use
 // by the current frame are never evicted (the point budget bounds them). Not thread-safe: the
@@ -27,8 +28,9 @@ namespace plumb::render {
 struct GpuNode {
   gpu::Buffer points;
   std::uint32_t point_count = 0;
-  std::uint64_t last_frame = 0;  // the last frame that drew it
-  gpu::Buffer labels;            // uint32 per point (segment colours), when uploaded
+  VkDeviceSize scans_offset = 0;  // where the scan indices start in `points`; 0: none
+  std::uint64_t last_frame = 0;   // the last frame that drew it
+  gpu::Buffer labels;             // uint32 per point (segment colours), when uploaded
   std::uint64_t labels_version = 0;
 };
 

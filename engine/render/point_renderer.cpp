@@ -51,7 +51,7 @@ constexpr std::uint32_t kResolveCode[] =
 #include "shaders/resolve.comp.inc"
     ;
 
-static_assert(sizeof(shader::SplatChunk) == 112, "SplatChunk differs from its std430 layout");
+static_assert(sizeof(shader::SplatChunk) == 120, "SplatChunk differs from its std430 layout");
 static_assert(sizeof(shader::SplatPush) == 32, "SplatPush differs from its std430 layout");
 static_assert(sizeof(shader::ResolvePush) == 72, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
@@ -80,6 +80,8 @@ std::uint32_t shaderColourMode(ColourMode mode) {
       return shader::kColourIntensity;
     case ColourMode::kElevation:
       return shader::kColourElevation;
+    case ColourMode::kScan:
+      return shader::kColourScan;
     default:
       return shader::kColourSegment;
   }
@@ -375,6 +377,9 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       std::memcpy(chunk.depth_from_node, transform.depth_from_origin.data(), sizeof chunk.depth_from_node);
       chunk.points = d.node->points.address() + VkDeviceAddress{first} * sizeof(lod::PackedPoint);
       chunk.labels = d.labels == 0 ? 0 : d.labels + VkDeviceAddress{first} * sizeof(std::uint32_t);
+      chunk.scans = d.node->scans_offset == 0 ? 0
+                                              : d.node->points.address() + d.node->scans_offset +
+                                                    VkDeviceAddress{first} * sizeof(std::uint16_t);
       chunk.point_count = std::min(shader::kChunkPoints, d.node->point_count - first);
       chunk.elevation_offset = static_cast<float>(origin[2] - elevation_base);
       chunk.point_size_px = point_size;

@@ -46,6 +46,7 @@ enum class ColourMode : std::uint8_t {
   kRgb,
   kIntensity,
   kElevation,
+  kScan,  // a distinct colour per scan (lod::kHasScanIndex; a cloud of one scan has one colour)
   kSegment,
 };
 

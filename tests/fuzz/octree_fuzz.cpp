@@ -23,10 +23,9 @@ namespace {
 
 using plumb::lod::kHeaderBytes;
 using plumb::lod::kIndexEntryBytes;
-using plumb::lod::kPointBytes;
 
 // `bytes` with the checksums of whatever lies inside the file recomputed: node blocks (through the
-// index entries), the index, then the header. Unchanged when the header is not one of this
+// index entries), the index, the scan table, then the header. Unchanged when the header is not one of this
 // version: then there is nothing to repair, and open() must say what is wrong.
 void repairChecksums(std::vector<std::byte>& bytes) {
   if (bytes.size() < kHeaderBytes) return;
@@ -45,13 +44,17 @@ void repairChecksums(std::vector<std::byte>& bytes) {
   if (header.index_offset > size || header.index_bytes > size - header.index_offset) return;
   const auto index = std::span(bytes).subspan(header.index_offset, header.index_bytes);
   for (std::size_t at = 0; at + kIndexEntryBytes <= index.size(); at += kIndexEntryBytes) {
-    plumb::lod::NodeInfo node = plumb::lod::decodeIndexEntry(index.data() + at);
-    const std::uint64_t block = std::uint64_t{node.point_count} * kPointBytes;
+    plumb::lod::NodeInfo node = plumb::lod::decodeIndexEntry(index.data() + at, header.attributes);
+    const std::uint64_t block = node.bytes;
     if (node.offset > size || block > size - node.offset) continue;
     node.crc = plumb::lod::crc32Of(std::span(bytes).subspan(node.offset, block));
     plumb::lod::encodeIndexEntry(node, index.data() + at);
   }
   header.index_crc = plumb::lod::crc32Of(index);
+  if (header.scan_table_offset <= size && header.scan_table_bytes <= size - header.scan_table_offset) {
+    header.scan_table_crc =
+        plumb::lod::crc32Of(std::span(bytes).subspan(header.scan_table_offset, header.scan_table_bytes));
+  }
   const auto repaired = plumb::lod::encodeHeader(header);
   std::memcpy(bytes.data(), repaired.data(), kHeaderBytes);
 }

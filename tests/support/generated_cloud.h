@@ -4,6 +4,8 @@
 
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "engine/io/point_reader.h"
 #include "engine/lod/octree_builder.h"
@@ -13,14 +15,17 @@ namespace plumb::test {
 // Point i of a cloud of `count` points.
 using PointGenerator = std::function<io::PointRecord(std::uint64_t i)>;
 
+// `scans`: the names of the scans the generated file holds, as E57 reports its data3D (the
+// generator sets each point's PointRecord::scan); empty: a file of one scan.
 class GeneratedReader final : public io::PointReader {
  public:
-  GeneratedReader(std::uint64_t count, PointGenerator generator)
+  GeneratedReader(std::uint64_t count, PointGenerator generator, std::vector<std::string> scans = {})
       : io::PointReader("generated"), count_(count), generator_(std::move(generator)) {
     info_.format = "generated";
     info_.declared_points = count;
     info_.attributes.colour = true;
     info_.attributes.intensity = true;
+    info_.scans = std::move(scans);
   }
 
   bool read(io::PointBatch& batch, std::size_t max_points) override {
@@ -35,8 +40,10 @@ class GeneratedReader final : public io::PointReader {
   std::uint64_t next_ = 0;
 };
 
-inline lod::BuildSource generatedSource(std::uint64_t count, PointGenerator generator) {
-  return {"generated", [count, generator] { return std::make_unique<GeneratedReader>(count, generator); }};
+inline lod::BuildSource generatedSource(std::uint64_t count, PointGenerator generator, std::string name = "generated",
+                                        std::vector<std::string> scans = {}) {
+  return {std::move(name),
+          [count, generator, scans] { return std::make_unique<GeneratedReader>(count, generator, scans); }};
 }
 
 // A unique 64-bit id carried in the colour and intensity channels, to follow points through a build.

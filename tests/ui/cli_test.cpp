@@ -126,6 +126,13 @@ TEST_F(Cli, ImportMergesFilesAndInfoDescribesTheOctree) {
   EXPECT_NE(info.out.find("1 input points skipped"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("verified"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("spacing"), std::string::npos) << info.out;
+  // Two files are two scans: each point keeps its own, and the renderer colours by it.
+  EXPECT_NE(import.out.find("scans    2, each point keeps its scan"), std::string::npos) << import.out;
+  EXPECT_NE(info.out.find(" intensity scan\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("scans     0  room.ply\n            1  extra.xyz\n"), std::string::npos) << info.out;
+  const Outcome render =
+      plumb("render " + path("site.plumb") + " --colour scan --view top --size 64x48 -o " + path("scans.png"));
+  EXPECT_EQ(render.exit_code, 0) << render.err;
 }
 
 TEST_F(Cli, ImportOfABadFileNamesItAndLeavesNoOctree) {
@@ -253,10 +260,9 @@ TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
   const plumb::test::CornerLimit limit =
       plumb::test::SimulatedTruth(path("room.ply"), path("room.json")).cornerLimit({512007.0, 5403005.0, 252.5});
   const double error =
-      (Eigen::Vector3d(corner[0].get<double>(), corner[1].get<double>(), corner[2].get<double>()) - limit.truth)
-          .norm();
-  std::printf("corner %.4f mm from the truth; the limit's standard error %.4f mm (its fit %.4f mm off)\n",
-              error * 1e3, limit.standard_error_m * 1e3, (limit.fitted - limit.truth).norm() * 1e3);
+      (Eigen::Vector3d(corner[0].get<double>(), corner[1].get<double>(), corner[2].get<double>()) - limit.truth).norm();
+  std::printf("corner %.4f mm from the truth; the limit's standard error %.4f mm (its fit %.4f mm off)\n", error * 1e3,
+              limit.standard_error_m * 1e3, (limit.fitted - limit.truth).norm() * 1e3);
   EXPECT_LT(error, plumb::test::kEndToEndLimitFactor * limit.standard_error_m);
   EXPECT_EQ(result["edges"].size(), 3u);
   // The glTF binary: a GLB header ("glTF", version 2) and its declared length (tinygltf reads it

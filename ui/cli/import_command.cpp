@@ -27,8 +27,13 @@ struct ImportOptions {
 
 Command addImportCommand(CLI::App& plumb) {
   auto options = std::make_shared<ImportOptions>();
-  CLI::App* sub = plumb.add_subcommand("import", "Build an octree from point files (PLY, LAS, PCD, E57, XYZ/TXT/PTS/CSV)");
-  sub->footer("Example: plumb import scan1.las scan2.ply -o site.plumb --memory-mb 4096");
+  CLI::App* sub = plumb.add_subcommand(
+      "import", "Build an octree from point files (PLY, LAS, LAZ, COPC, PCD, E57, XYZ/TXT/PTS/CSV)");
+  sub->footer(
+      "Example: plumb import scan1.las scan2.ply -o site.plumb --memory-mb 4096\n"
+      "Kept: positions, colour, intensity; where the inputs hold several scans (each E57 data3D, each other "
+      "file), the scan of every point. Fields not kept are listed after the import. The README lists what each "
+      "format's reader reads.");
   sub->add_option("inputs", options->inputs, "Point files, merged into one cloud")
       ->required()
       ->check(CLI::ExistingFile);
@@ -62,6 +67,10 @@ Command addImportCommand(CLI::App& plumb) {
                   withThousands(report.skipped_non_finite).c_str());
     }
     for (const std::string& field : report.ignored_fields) std::printf("  ignored  %s\n", field.c_str());
+    if (!report.scans.empty()) {
+      std::printf("  scans    %zu, each point keeps its scan (plumb render --colour scan; plumb info lists them)\n",
+                  report.scans.size());
+    }
     std::printf("  octree   %s nodes, %u levels, %.1f MB\n", withThousands(report.nodes).c_str(), report.depth + 1,
                 static_cast<double>(report.file_bytes) / 1e6);
     std::printf("  chunks   %zu (largest %s points), indexed on %u thread%s within %zu MiB\n", report.chunks,

@@ -29,8 +29,7 @@ Command addInfoCommand(CLI::App& plumb) {
     std::printf("  format      %s\n", octree->format().c_str());
     std::printf("  points      %s", withThousands(h.point_count).c_str());
     if (h.skipped_non_finite > 0) {
-      std::printf(" (%s input points skipped: no valid position)",
-                  withThousands(h.skipped_non_finite).c_str());
+      std::printf(" (%s input points skipped: no valid position)", withThousands(h.skipped_non_finite).c_str());
     }
     std::printf("\n  inputs      %u file%s\n", h.input_files, h.input_files == 1 ? "" : "s");
     std::printf("  bounds      x %.3f .. %.3f\n              y %.3f .. %.3f\n              z %.3f .. %.3f\n",
@@ -40,7 +39,14 @@ Command addInfoCommand(CLI::App& plumb) {
     std::string attributes;
     if (h.attributes & lod::kHasColour) attributes += " colour";
     if (h.attributes & lod::kHasIntensity) attributes += " intensity";
+    if (h.attributes & lod::kHasScanIndex) attributes += " scan";
     std::printf("  attributes  position%s\n", attributes.c_str());
+    // A cloud merged from many scans lists the first ones: the rest are a count.
+    constexpr std::size_t kScansListed = 20;
+    for (std::size_t i = 0; i < h.scans.size() && i < kScansListed; ++i) {
+      std::printf("  %s %5zu  %s\n", i == 0 ? "scans" : "     ", i, h.scans[i].c_str());
+    }
+    if (h.scans.size() > kScansListed) std::printf("              ... and %zu more\n", h.scans.size() - kScansListed);
     std::printf("  nodes       %s in %u levels (leaves hold up to %s points)\n", withThousands(h.node_count).c_str(),
                 h.depth + 1, withThousands(h.leaf_max_points).c_str());
 

@@ -59,6 +59,7 @@ render::ColourMode colourModeNamed(const std::string& name) {
   if (name == "auto") return render::ColourMode::kAuto;
   if (name == "rgb") return render::ColourMode::kRgb;
   if (name == "intensity") return render::ColourMode::kIntensity;
+  if (name == "scan") return render::ColourMode::kScan;
   return render::ColourMode::kElevation;  // the CLI's check admits nothing else
 }
 
@@ -83,9 +84,9 @@ Command addRenderCommand(CLI::App& plumb) {
   sub->add_option("--edl", options->edl, "Eye-dome lighting (default on)")->check(CLI::IsMember({"on", "off"}));
   // Segment colours need a labelling, which the viewer makes from its grows (SegmentLabels).
   sub->add_option("--colour", options->colour,
-                  "Colour by rgb, intensity or elevation (default auto: rgb where the cloud has colour, else "
-                  "intensity, else elevation)")
-      ->check(CLI::IsMember({"auto", "rgb", "intensity", "elevation"}));
+                  "Colour by rgb, intensity, elevation or scan (a colour per scan of a cloud that merges several; "
+                  "default auto: rgb where the cloud has colour, else intensity, else elevation)")
+      ->check(CLI::IsMember({"auto", "rgb", "intensity", "elevation", "scan"}));
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   sub->add_option("-o,--output", options->output, "The PNG to write")->required();
 

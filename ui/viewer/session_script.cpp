@@ -7,8 +7,8 @@
 #include <array>
 #include <fstream>
 #include <map>
-#include <string_view>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "engine/core/error.h"
 
@@ -203,9 +203,18 @@ class StepParser {
       // In the Grow panel's order (GrowPanel::detail).
       static constexpr std::array<std::string_view, 6> kDetails{"view", "view-paper", "low", "medium", "high", "full"};
       const auto it = std::find(kDetails.begin(), kDetails.end(), name);
-      if (it == kDetails.end()) fail("unknown grow_detail '" + name + "' (view, view-paper, low, medium, high or full)");
+      if (it == kDetails.end())
+        fail("unknown grow_detail '" + name + "' (view, view-paper, low, medium, high or full)");
       out.kind = ScriptStep::Kind::kGrowDetail;
       out.count = static_cast<std::uint64_t>(it - kDetails.begin());
+    } else if (step_.contains("colour")) {
+      const std::string name = step_.at("colour").is_string() ? step_.at("colour").get<std::string>() : "";
+      // In the order of render::ColourMode.
+      static constexpr std::array<std::string_view, 5> kColours{"auto", "rgb", "intensity", "elevation", "scan"};
+      const auto it = std::find(kColours.begin(), kColours.end(), name);
+      if (it == kColours.end()) fail("unknown colour '" + name + "' (auto, rgb, intensity, elevation or scan)");
+      out.kind = ScriptStep::Kind::kColour;
+      out.count = static_cast<std::uint64_t>(it - kColours.begin());
     } else if (step_.contains("wait")) {
       const std::string what = step_.at("wait").is_string() ? step_.at("wait").get<std::string>() : "";
       out.timeout_s = number("timeout_s", 60, 0.001, 3600);
@@ -319,6 +328,10 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
         frame.grow_detail = static_cast<int>(step.count);
         done();
         continue;
+      case ScriptStep::Kind::kColour:
+        frame.colour = static_cast<int>(step.count);
+        done();
+        continue;
       case ScriptStep::Kind::kScreenshot:
         frame.screenshot = step.name;
         done();
@@ -363,7 +376,7 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
     }
   }
   // Steps at the end that take no frame of their own still run: the session ends on the next call.
-  frame.finished = !frame.tool && !frame.grow_detail && !frame.memory;
+  frame.finished = !frame.tool && !frame.grow_detail && !frame.colour && !frame.memory;
   return frame;
 }
 

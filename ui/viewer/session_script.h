@@ -19,6 +19,8 @@
 //                                          extrude)
 //   {"grow_detail": "medium"}              the Grow panel's Detail (view, view-paper, low, medium,
 //                                          high, full)
+//   {"colour": "scan"}                     the View panel's Colour (auto, rgb, intensity,
+//                                          elevation, scan)
 //   {"wait": "frames", "count": N} | {"wait": "ms", "ms": N} | {"wait": "grower_idle"} |
 //   {"wait": "streaming_idle"}             the last two time out after "timeout_s" (default 60)
 //   {"screenshot": "name.png"}             into --screenshot-dir
@@ -49,6 +51,7 @@ struct ScriptStep {
     kLook,        // `world` (the eye), `target`
     kTool,        // `tool`
     kGrowDetail,  // `count`: the Grow panel's Detail entry (GrowPanel::detail)
+    kColour,      // `count`: the View panel's Colour, a render::ColourMode
     kWaitFrames,  // `count`
     kWaitMs,      // `ms`
     kWaitGrowerIdle,
@@ -77,10 +80,11 @@ std::vector<ScriptStep> readSessionScript(const std::string& path);
 struct ScriptFrame {
   std::vector<InputEvent> events;
   std::optional<Tool> tool;
-  std::optional<int> grow_detail;  // the Grow panel's Detail entry
+  std::optional<int> grow_detail;         // the Grow panel's Detail entry
+  std::optional<int> colour;              // the View panel's Colour, a render::ColourMode
   std::optional<std::string> screenshot;  // file name
   std::optional<std::pair<int, int>> resize;
-  std::optional<std::string> memory;  // print a memory report with this label
+  std::optional<std::string> memory;                                // print a memory report with this label
   std::optional<Eigen::Vector3d> click_world;                       // the viewer turns it into a click at its pixel
   std::optional<Eigen::Vector3d> move_world;                        // ... a mouse move to its pixel
   std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> look;  // eye and target

@@ -192,8 +192,8 @@ void Viewer::reportMemory(const std::string& label) const {
       "(%.1f reserved; nodes %.1f MiB), undo history %zu edits, scene %zu segments %zu polygons\n",
       label.c_str(), resident_mib, static_cast<double>(cache.bytes) * mib, static_cast<unsigned long long>(cache.nodes),
       static_cast<double>(allocator_.bytesInUse()) * mib, static_cast<double>(allocator_.bytesReserved()) * mib,
-      static_cast<double>(gpu_nodes.bytes) * mib, scene_.history().undoCount(),
-      scene_.registry().count<Segment>(), scene_.registry().count<Polygon>());
+      static_cast<double>(gpu_nodes.bytes) * mib, scene_.history().undoCount(), scene_.registry().count<Segment>(),
+      scene_.registry().count<Polygon>());
   std::fflush(stdout);
 }
 
@@ -387,6 +387,7 @@ int Viewer::run() {
       events.insert(events.end(), frame.events.begin(), frame.events.end());
       if (frame.tool) setTool(*frame.tool);
       if (frame.grow_detail) grow_panel_.detail = *frame.grow_detail;
+      if (frame.colour) settings_.colour = static_cast<render::ColourMode>(*frame.colour);
       if (frame.resize) window_.resize(frame.resize->first, frame.resize->second);
       if (frame.look && cloud_) {
         view::Camera camera = cloud_->navigator->camera();
@@ -602,8 +603,8 @@ void Viewer::handleViewEvent(const InputEvent& event) {
   // which changes while the view moves); picks and the tools in render pixels (the window's, times
   // the render scale).
   const double scale = renderScale();
-  const bool clicked = cloud_->navigator->handle(
-      event, [this, scale](double x, double y) { return pickAt(x * scale, y * scale); });
+  const bool clicked =
+      cloud_->navigator->handle(event, [this, scale](double x, double y) { return pickAt(x * scale, y * scale); });
   if (clicked) click(event.x * scale, event.y * scale);
 }
 

@@ -68,7 +68,7 @@ struct GrowPanel {
   int detail = 0;
   std::optional<reco::GrowParameters> last;
   std::optional<reco::DataAtClick> last_data;  // the cloud at the last click
-  std::optional<GrowUpdate> last_update;  // its newest snapshot's statistics
+  std::optional<GrowUpdate> last_update;       // its newest snapshot's statistics
 };
 
 class Viewer {
@@ -121,6 +121,7 @@ class Viewer {
   void drawGrowPanel();
   void drawSegmentsPanel();
   void drawViewPanel();
+  void drawScanLegend();
   void drawProjectPanel();
   void drawStatusBar();
 
@@ -160,9 +161,9 @@ class Viewer {
   GrowPanel grow_panel_;
   using Clock = std::chrono::steady_clock;
   Clock::time_point last_frame_ = Clock::now();
-  double frame_ms_ = 0.0;      // the last frame, start to start
+  double frame_ms_ = 0.0;        // the last frame, start to start
   double clock_frame_ms_ = 0.0;  // what the last frame lasted for the viewer's behaviour (ScriptClock)
-  double frame_ms_avg_ = 0.0;  // smoothed, for the palette
+  double frame_ms_avg_ = 0.0;    // smoothed, for the palette
   std::uint64_t frames_ = 0;
   bool last_frame_moved_ = false;              // the camera changed in the frame just drawn
   std::vector<double> moving_frame_ms_;        // frame times while the camera moved (scripted runs report them)

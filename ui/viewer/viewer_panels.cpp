@@ -4,13 +4,18 @@
 
 #include <imgui.h>
 
+#include <algorithm>
+#include <array>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
+#include "engine/render/palette.h"
 #include "ui/viewer/project_bridge.h"
 #include "ui/viewer/viewer.h"
 
@@ -21,8 +26,9 @@ void tooltip(const char* text) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
 }
 
-const char* kColourModes[] = {"Auto", "RGB", "Intensity", "Elevation"};
-const char* kDetails[] = {"From the view",       "From the view, paper's densities", "Low", "Medium", "High",
+// In the order of render::ColourMode, up to kScan.
+const char* kColourModes[] = {"Auto", "RGB", "Intensity", "Elevation", "Scan"};
+const char* kDetails[] = {"From the view",     "From the view, paper's densities", "Low", "Medium", "High",
                           "Full (every point)"};
 
 }  // namespace
@@ -60,8 +66,9 @@ void Viewer::drawProjectPanel() {
   ImGui::Text("%s%s", std::filesystem::path(project_.path()).filename().string().c_str(), unsaved ? " *" : "");
   tooltip(project_.path().c_str());
   if (ImGui::Button("Save")) saveProject();
-  tooltip("Save the project (Ctrl+S); unsaved changes also go to an autosave beside it (every 30 s unless "
-          "--autosave-s says otherwise)");
+  tooltip(
+      "Save the project (Ctrl+S); unsaved changes also go to an autosave beside it (every 30 s unless "
+      "--autosave-s says otherwise)");
   ImGui::SameLine();
   if (ImGui::Button("Export")) exportProject();
   tooltip("Write glTF (.glb), OBJ, DXF and a CSV of the corners beside the project (Ctrl+E)");
@@ -352,10 +359,12 @@ void Viewer::drawViewPanel() {
     ImGui::Text("(moving: scale %.2f)", moving_scale_);
   }
   int colour = static_cast<int>(settings_.colour);
-  if (colour > 3) colour = 0;
+  if (colour >= IM_ARRAYSIZE(kColourModes)) colour = 0;
   if (ImGui::Combo("Colour", &colour, kColourModes, IM_ARRAYSIZE(kColourModes))) {
     settings_.colour = static_cast<render::ColourMode>(colour);
   }
+  tooltip("Scan: a colour per scan of a cloud that merges several (E57 scans, or several files imported together)");
+  if (settings_.colour == render::ColourMode::kScan && cloud_) drawScanLegend();
   ImGui::Checkbox("Eye-dome lighting", &settings_.edl);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(100);
@@ -366,6 +375,30 @@ void Viewer::drawViewPanel() {
   ImGui::Text("%" PRIu64 " points in %" PRIu64 " nodes, %" PRIu64 " to load", last_stats_.points_drawn,
               last_stats_.nodes_drawn, last_stats_.nodes_missing);
   endInColumn(true);
+}
+
+// The scans' colours and names; a long list scrolls.
+void Viewer::drawScanLegend() {
+  const std::vector<std::string>& scans = cloud_->octree->header().scans;
+  if (scans.empty()) {
+    ImGui::TextDisabled("One scan: every point has its colour");
+    return;
+  }
+  ImGui::Text("%zu scans", scans.size());
+  const float rows = static_cast<float>(std::min<std::size_t>(scans.size(), 8));
+  ImGui::BeginChild("scans", ImVec2(0, rows * ImGui::GetTextLineHeightWithSpacing() + 4), false);
+  ImGuiListClipper clipper;
+  clipper.Begin(static_cast<int>(scans.size()));
+  while (clipper.Step()) {
+    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
+      const std::array<float, 3> rgb = render::scanColour(static_cast<std::uint32_t>(i));
+      ImGui::ColorButton(("##scan" + std::to_string(i)).c_str(), ImVec4(rgb[0], rgb[1], rgb[2], 1.0f),
+                         ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+      ImGui::SameLine();
+      ImGui::TextUnformatted(scans[static_cast<std::size_t>(i)].c_str());
+    }
+  }
+  ImGui::EndChild();
 }
 
 void Viewer::drawStatusBar() {

@@ -80,7 +80,8 @@ std::string withEdit(const test::TempDirectory& dir, const std::string& source, 
   for (std::size_t page = 0; page * 1024 < file.size(); ++page) {
     file.replace(page * 1024, 1020, logical, page * 1020, 1020);
     const std::uint32_t crc = crc32c(std::as_bytes(std::span(file.data() + page * 1024, 1020)));
-    for (int i = 0; i < 4; ++i) file[page * 1024 + 1020 + static_cast<std::size_t>(i)] = static_cast<char>(crc >> (24 - 8 * i));
+    for (int i = 0; i < 4; ++i)
+      file[page * 1024 + 1020 + static_cast<std::size_t>(i)] = static_cast<char>(crc >> (24 - 8 * i));
   }
   const std::string path = dir.file(std::filesystem::path(source).stem().string() + "-edited.e57");
   writeBytes(path, file);
@@ -130,11 +131,15 @@ TEST(E57Data, ScansMergeIntoOneCloudInTheWorldFrameByTheirPoses) {
   ASSERT_EQ(posed.points.size(), 6u);
   const Eigen::Matrix3d quarter = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   for (std::size_t i = 0; i < 6; ++i) {
-    const Eigen::Vector3d expected = i < 2 ? Eigen::Vector3d(position(plain.points[i]) + Eigen::Vector3d(-1.0, 2.5, 0.0))
-                                           : Eigen::Vector3d(quarter * position(plain.points[i]) + Eigen::Vector3d(10, 20, 30));
+    const Eigen::Vector3d expected =
+        i < 2 ? Eigen::Vector3d(position(plain.points[i]) + Eigen::Vector3d(-1.0, 2.5, 0.0))
+              : Eigen::Vector3d(quarter * position(plain.points[i]) + Eigen::Vector3d(10, 20, 30));
     EXPECT_LT((position(posed.points[i]) - expected).norm(), 1e-9) << i;
     EXPECT_EQ(posed.points[i].rgb, plain.points[i].rgb) << i;
+    // Each point keeps the index of its scan: the viewer colours by it.
+    EXPECT_EQ(posed.points[i].scan, i < 2 ? 0 : 1) << i;
   }
+  EXPECT_EQ(posed.info.scans, (std::vector<std::string>{"B2 - Cloud", "A4 - Cloud"}));
   EXPECT_TRUE(posed.info.attributes.colour);
 }
 

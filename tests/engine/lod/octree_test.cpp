@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <span>
 #include <unordered_map>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/lod/octree_builder.h"
@@ -187,6 +189,65 @@ TEST(Octree, SeveralInputsMergeAndSkippedPointsAreCounted) {
   EXPECT_EQ(built.octree->header().input_files, 2u);
 }
 
+// A cloud merged from several scans keeps each point's: an input of two scans (as an E57 file
+// reports them) and a plain file make scans 0 and 1 of the first and 2 of the second, named
+// after their inputs, and every point reads back with the scan it came from.
+TEST(Octree, EachPointKeepsTheIndexOfItsScan) {
+  test::TempDirectory dir;
+  const auto two_scans = [](std::uint64_t i) {
+    io::PointRecord p = roomPoint(i);
+    p.scan = static_cast<std::uint16_t>(i % 3 == 0 ? 1 : 0);
+    return p;
+  };
+  const Built built = build(dir, {test::generatedSource(40'000, two_scans, "site.e57", {"north", "south"}),
+                                  test::generatedSource(
+                                      30'000, [](std::uint64_t i) { return roomPoint(1'000'000 + i); }, "extra.ply")});
+  const OctreeHeader& h = built.octree->header();
+  EXPECT_EQ(h.attributes & kHasScanIndex, kHasScanIndex);
+  EXPECT_EQ(h.scans, (std::vector<std::string>{"site.e57: north", "site.e57: south", "extra.ply"}));
+  EXPECT_EQ(built.report.scans, h.scans);
+  EXPECT_EQ(built.octree->format(), "Plumb octree 2");
+  std::array<std::uint64_t, 3> per_scan{};
+  for (const NodeInfo& node : built.octree->nodes()) {
+    const NodePoints loaded = built.octree->load(node);
+    ASSERT_EQ(loaded.scans.size(), loaded.size());
+    for (std::size_t i = 0; i < loaded.size(); ++i) {
+      const std::uint64_t id = test::idOf(loaded.points[i].rgb, loaded.points[i].intensity);
+      const std::uint16_t expected = id >= 1'000'000 ? 2 : id % 3 == 0 ? 1 : 0;
+      ASSERT_EQ(loaded.scans[i], expected) << "point " << id;
+      ++per_scan[expected];
+    }
+  }
+  EXPECT_EQ(per_scan, (std::array<std::uint64_t, 3>{26'666, 13'334, 30'000}));
+}
+
+// One scan has nothing to tell apart: no scan index, no table, the points as before.
+TEST(Octree, ACloudOfOneScanKeepsNoScanIndex) {
+  test::TempDirectory dir;
+  const Built built = build(dir, {test::generatedSource(20'000, roomPoint, "one.ply")});
+  EXPECT_EQ(built.octree->header().attributes & kHasScanIndex, 0u);
+  EXPECT_TRUE(built.octree->header().scans.empty());
+  EXPECT_EQ(built.report.file_bytes, kHeaderBytes + 20'000 * kPointBytes + built.report.nodes * kIndexEntryBytes);
+  for (const NodeInfo& node : built.octree->nodes()) EXPECT_TRUE(built.octree->load(node).scans.empty());
+}
+
+// Octrees of format 1 (written before scans existed) open and read as they did.
+TEST(Octree, AVersionOneFileStillOpens) {
+  test::TempDirectory dir;
+  const Built built = build(dir, {test::generatedSource(20'000, roomPoint)});
+  const std::string path = dir.file("cloud.plumb");
+  std::string bytes = test::readFile(path);
+  const std::uint32_t version = 1;
+  std::memcpy(bytes.data() + 8, &version, 4);
+  const std::uint32_t crc = crc32Of(std::as_bytes(std::span(bytes)).first(kHeaderBytes - 4));
+  std::memcpy(bytes.data() + kHeaderBytes - 4, &crc, 4);
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  const auto old = Octree::open(path);
+  EXPECT_EQ(old->format(), "Plumb octree 1");
+  expectEveryPointKeptToTheMillimetre(*old, 20'000);
+}
+
 TEST(Octree, ASinglePointAndDuplicatesBuild) {
   test::TempDirectory dir;
   const Built one = build(dir, {test::generatedSource(1, roomPoint)});
@@ -269,6 +330,40 @@ TEST_F(CorruptOctree, HeaderIndexTruncationAndVersionAreChecked) {
   EXPECT_NE(openError().find("shorter than an octree header"), std::string::npos) << openError();
   rewrite(std::string(300, 'x'));
   EXPECT_NE(openError().find("not a Plumb octree"), std::string::npos) << openError();
+}
+
+// A damaged scan table, or a header whose scan flag and count disagree, is reported as such.
+TEST(CorruptScans, ABadScanTableOrFlagIsReported) {
+  test::TempDirectory dir;
+  const auto two = [](std::uint64_t i) {
+    io::PointRecord p = roomPoint(i);
+    p.scan = static_cast<std::uint16_t>(i % 2);
+    return p;
+  };
+  build(dir, {test::generatedSource(5'000, two, "pair.e57", {"a", "b"})});
+  const std::string path = dir.file("cloud.plumb");
+  const std::string bytes = test::readFile(path);
+  auto errorOf = [&](const std::string& changed) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(changed.data(), static_cast<std::streamsize>(changed.size()));
+    try {
+      Octree::open(path);
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  std::string table = bytes;
+  table[table.size() - 1] ^= 0x20;  // the table ends the file: the last byte of "pair.e57: b"
+  EXPECT_NE(errorOf(table).find("scan table is corrupt"), std::string::npos) << errorOf(table);
+
+  OctreeHeader header = decodeHeader(std::as_bytes(std::span(bytes)).first<kHeaderBytes>(), path);
+  header.attributes &= ~std::uint32_t{kHasScanIndex};
+  std::string flag = bytes;
+  const auto encoded = encodeHeader(header);
+  std::memcpy(flag.data(), encoded.data(), kHeaderBytes);
+  EXPECT_NE(errorOf(flag).find("scan index flag and the scan count disagree"), std::string::npos) << errorOf(flag);
+  EXPECT_NE(errorOf(flag).find(path), std::string::npos);
 }
 
 // Found by the fuzz target (tests/fuzz/corpus/octree/node_count_wraps.plumb): a node count whose

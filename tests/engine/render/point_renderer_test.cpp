@@ -18,6 +18,7 @@
 #include "engine/gpu/memory.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
+#include "engine/render/palette.h"
 #include "tests/engine/render/render_scene.h"
 #include "tests/support/gpu_test.h"
 
@@ -78,6 +79,25 @@ class PointRendererTest : public ::testing::Test {
     RenderSettings settings;
     settings.edl = false;
     return settings;
+  }
+
+  // The front view, in `colour` without eye-dome lighting, of a variant of the wall scene that
+  // `source` makes; kept for inspection as `name`.
+  io::RgbaImage renderVariant(lod::BuildSource source, ColourMode colour, const std::string& name) {
+    const test::TempDirectory dir("plumb_" + name + "_test");
+    lod::BuildOptions options;
+    options.sources = {std::move(source)};
+    options.output = dir.file(name + ".plumb");
+    options.memory_mb = 64;
+    lod::buildOctree(options);
+    lod::NodeCache nodes(lod::Octree::open(options.output), 64 << 20);
+    PointRenderer renderer(*device_, *allocator_, nodes);
+    RenderSettings settings = flat();
+    settings.colour = colour;
+    renderer.renderComplete(test::wallSceneFront(kWidth, kHeight), settings);
+    io::RgbaImage image = renderer.readColour();
+    keepForInspection(image, name);
+    return image;
   }
 
   static inline std::unique_ptr<test::TempDirectory> directory_;
@@ -205,24 +225,16 @@ TEST_F(PointRendererTest, IntensityIsGreyAndElevationFollowsTheRamp) {
 // keep them: drawn over the sampled range (1st to 99th percentile), not over 0 to 65,535, which
 // left such clouds nearly black.
 TEST_F(PointRendererTest, IntensityIsSpreadOverTheCloudsOwnRange) {
-  const test::TempDirectory dir("plumb_intensity_range_test");
-  lod::BuildOptions options;
-  options.sources = {test::generatedSource(test::wallScenePoints(), [](std::uint64_t i) {
-    io::PointRecord point = test::wallScenePoint(i, {});
-    point.intensity = static_cast<std::uint16_t>(std::lround(255.0 * std::clamp((point.x + 4.0) / 8.0, 0.0, 1.0)));
-    return point;
-  })};
-  options.output = dir.file("ramp.plumb");
-  options.memory_mb = 64;
-  lod::buildOctree(options);
-  lod::NodeCache nodes(lod::Octree::open(options.output), 64 << 20);
-  PointRenderer renderer(*device_, *allocator_, nodes);
+  const io::RgbaImage image =
+      renderVariant(test::generatedSource(test::wallScenePoints(),
+                                          [](std::uint64_t i) {
+                                            io::PointRecord point = test::wallScenePoint(i, {});
+                                            point.intensity = static_cast<std::uint16_t>(
+                                                std::lround(255.0 * std::clamp((point.x + 4.0) / 8.0, 0.0, 1.0)));
+                                            return point;
+                                          }),
+                    ColourMode::kIntensity, "intensity_8_bit");
   const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
-  RenderSettings settings = flat();
-  settings.colour = ColourMode::kIntensity;
-  renderer.renderComplete(camera, settings);
-  const io::RgbaImage image = renderer.readColour();
-  keepForInspection(image, "intensity_8_bit");
   // The view spans x from -2.67 to 2.67 m: intensities 48 and 207 at x = -2.5 and 2.5 m, about 18 %
   // and 82 % of the range 3 to 252 (drawn over 0 to 65,535 both were black: 0.2 and 0.8 of 255).
   const auto left = test::frontPixel(camera, -2.5, 1.5), right = test::frontPixel(camera, 2.5, 1.5);
@@ -271,6 +283,44 @@ TEST_F(PointRendererTest, SegmentColoursFollowTheLabels) {
   renderer.renderComplete(camera, settings);
   image = renderer.readColour();
   EXPECT_FALSE(near(image.pixel(red[0], red[1]), first_red, 20));
+}
+
+// Scan colours: the wall scene as three scans (the red wall, the green wall, the blue square),
+// drawn in the palette's colours of scans 0, 1 and 2 (engine/render/palette.h), across nodes of
+// several chunks; the one-scan scene is all in scan 0's colour.
+TEST_F(PointRendererTest, ScanColoursTellTheScansApart) {
+  const io::RgbaImage image =
+      renderVariant(test::generatedSource(test::wallScenePoints(),
+                                          [](std::uint64_t i) {
+                                            io::PointRecord point = test::wallScenePoint(i, {});
+                                            point.scan = point.rgb[0] > 0 ? 0 : point.rgb[1] > 0 ? 1 : 2;
+                                            return point;
+                                          },
+                                          "walls.e57", {"red", "green", "blue"}),
+                    ColourMode::kScan, "scan_colours");
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight);
+  auto rgba = [](std::uint32_t scan) {
+    const std::array<float, 3> c = scanColour(scan);
+    auto byte = [](float v) { return static_cast<std::uint32_t>(std::lround(v * 255.0f)); };
+    return byte(c[0]) | byte(c[1]) << 8 | byte(c[2]) << 16 | 0xFF000000u;
+  };
+  const auto red = test::frontPixel(camera, -2.0, 0.5), green = test::frontPixel(camera, 2.0, 0.5),
+             square = test::frontPixel(camera, 0.0, 1.5), high_green = test::frontPixel(camera, 2.5, 2.8);
+  EXPECT_TRUE(near(image.pixel(red[0], red[1]), rgba(0), 2));
+  EXPECT_TRUE(near(image.pixel(green[0], green[1]), rgba(1), 2));
+  EXPECT_TRUE(near(image.pixel(high_green[0], high_green[1]), rgba(1), 2));
+  EXPECT_TRUE(near(image.pixel(square[0], square[1]), rgba(2), 2));
+  EXPECT_FALSE(near(rgba(0), rgba(1), 20));
+  EXPECT_FALSE(near(rgba(1), rgba(2), 20));
+
+  lod::NodeCache one_scan(walls_, 64 << 20);
+  PointRenderer plain(*device_, *allocator_, one_scan);
+  RenderSettings settings = flat();
+  settings.colour = ColourMode::kScan;
+  plain.renderComplete(camera, settings);
+  const io::RgbaImage all_one = plain.readColour();
+  EXPECT_TRUE(near(all_one.pixel(red[0], red[1]), rgba(0), 2));
+  EXPECT_TRUE(near(all_one.pixel(square[0], square[1]), rgba(0), 2));
 }
 
 // Overlays over the wall scene: a translucent polygon on the red wall blends with it; one

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "engine/core/error.h"
+#include "engine/render/point_renderer.h"
 #include "tests/support/temp_directory.h"
 
 namespace plumb::viewer {
@@ -47,9 +48,10 @@ TEST(SessionScript, ParsesEveryStepKind) {
     {"wait": "streaming_idle"},
     {"screenshot": "a.png"},
     {"resize": [800, 600]},
-    {"memory": "soak"}
+    {"memory": "soak"},
+    {"colour": "scan"}
   ])"));
-  ASSERT_EQ(steps.size(), 15u);
+  ASSERT_EQ(steps.size(), 16u);
   EXPECT_EQ(steps[0].frames.size(), 1u);
   ASSERT_EQ(steps[1].frames.size(), 3u) << "move, press, release: one frame each";
   EXPECT_EQ(steps[1].frames[1][0].button, GLFW_MOUSE_BUTTON_RIGHT);
@@ -72,6 +74,8 @@ TEST(SessionScript, ParsesEveryStepKind) {
   EXPECT_EQ(steps[13].width, 800);
   EXPECT_EQ(steps[14].kind, ScriptStep::Kind::kMemory);
   EXPECT_EQ(steps[14].name, "soak");
+  EXPECT_EQ(steps[15].kind, ScriptStep::Kind::kColour);
+  EXPECT_EQ(steps[15].count, static_cast<std::uint64_t>(render::ColourMode::kScan));
 }
 
 TEST(SessionScript, MistakesNameTheFileAndTheStep) {
@@ -81,6 +85,7 @@ TEST(SessionScript, MistakesNameTheFileAndTheStep) {
   EXPECT_NE(errorOf(writeScript(dir, "[{\"click\": [1]}]")).find("step 1: 'click' must be [x, y]"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"key\": \"NOPE\"}]")).find("unknown key 'NOPE'"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"wait\": \"forever\"}]")).find("unknown wait 'forever'"), std::string::npos);
+  EXPECT_NE(errorOf(writeScript(dir, "[{\"colour\": \"pink\"}]")).find("unknown colour 'pink'"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"screenshot\": \"../x.png\"}]")).find("no folders"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"click\": [1e300, 2]}]")).find("outside any window"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"click_world\": [1, 2, \"z\"]}]")).find("[X, Y, Z]"), std::string::npos);
@@ -125,13 +130,18 @@ TEST(SessionScript, AWaitInMillisecondsCountsTheScriptsFrames) {
   EXPECT_EQ(player.next(true, true).screenshot, "after.png");
 }
 
-// A last step that takes no frame of its own (a memory report) still runs before the session ends.
+// A last step that takes no frame of its own (a memory report, a colour mode) still runs before
+// the session ends.
 TEST(SessionScript, TheLastStepRunsBeforeTheSessionEnds) {
   ScriptPlayer player(std::vector<ScriptStep>{ScriptStep{.kind = ScriptStep::Kind::kMemory, .name = "end"}});
   const ScriptFrame frame = player.next(true, true);
   EXPECT_EQ(frame.memory, "end");
   EXPECT_FALSE(frame.finished);
   EXPECT_TRUE(player.next(true, true).finished);
+
+  ScriptPlayer colour(std::vector<ScriptStep>{ScriptStep{.kind = ScriptStep::Kind::kColour, .count = 4}});
+  EXPECT_EQ(colour.next(true, true).colour, 4);
+  EXPECT_TRUE(colour.next(true, true).finished);
 }
 
 TEST(SessionScript, AWaitThatTimesOutFailsTheSession) {
