@@ -45,7 +45,21 @@ struct SplatChunk {
   uint point_count;        // at most kChunkPoints
   float elevation_offset;  // the node origin's z above ResolvePush's elevation base
   uint point_size_px;      // each point covers a square of this side (1 to kMaxPointSize)
+  float clip_offset[3];    // the node origin less the clip region's anchor (ClipPlanes)
+};
+
+// The region the splat keeps (engine/render/clip_region.h): half-spaces, each kept where
+// dot(plane.xyz, p) + plane.w >= 0, p a point's position less the region's anchor. The first
+// box_planes (0 or 6) are a box's faces, a point inside it when on the kept side of all six, and
+// keep_outside_box keeps the others instead; every further plane must hold as well.
+const uint kMaxClipPlanes = 32u;
+
+struct ClipPlanes {
+  uint plane_count;  // the box's included
+  uint box_planes;
+  uint keep_outside_box;
   uint reserved;
+  float planes[4 * kMaxClipPlanes];
 };
 
 // Points of a node whose children are not drawn, where they lie more than a pixel apart on
@@ -59,6 +73,7 @@ struct SplatPush {
   uint height;
   uint chunk_count;
   float near_m;  // points nearer than this to the eye are clipped
+  uint64_t clip;  // ClipPlanes; 0: every point kept
 };
 
 struct ResolvePush {

@@ -1,6 +1,7 @@
 // Node selection under a point budget, in the manner of Potree (Schuetz 2016, section 3.3):
 //   1. Start at the root; keep a queue of candidate nodes ordered by projected size.
-//   2. Take the largest. A node outside the frustum is dropped with its subtree; a node that
+//   2. Take the largest. A node outside the frustum, or wholly cut away by the clip region, is
+//      dropped with its subtree; a node that
 //      would pass the budget ends the selection (what is left is smaller still).
 //   3. Otherwise it is selected, and where its points lie further apart on screen than
 //      max_spacing_px its children join the queue.
@@ -74,7 +75,8 @@ class ScreenScale {
 
 }  // namespace
 
-NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera, const SelectionOptions& options) {
+NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera, const SelectionOptions& options,
+                          const ClipRegion& clip) {
   NodeSelection selection;
   const auto planes = frustumPlanes(camera);
   const ScreenScale scale(camera);
@@ -90,7 +92,7 @@ NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera,
     const lod::NodeInfo* node = octree.find(key);
     if (node == nullptr) return;
     const lod::Box3 box = cube.cellBox(key);
-    if (outside(planes, box)) {
+    if (outside(planes, box) || (clip.active() && clip.cutsAway(box))) {
       ++selection.culled;
       return;
     }

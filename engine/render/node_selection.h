@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/render/clip_region.h"
+
 namespace plumb::lod {
 class Octree;
 struct NodeInfo;
@@ -41,6 +43,8 @@ struct NodeSelection {
 };
 
 // The camera must be valid (view::validateCamera).
-NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera, const SelectionOptions& options);
+// Nodes the clip region cuts away wholly are skipped like those outside the frustum.
+NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera, const SelectionOptions& options,
+                          const ClipRegion& clip = {});
 
 }  // namespace plumb::render

@@ -51,8 +51,8 @@ constexpr std::uint32_t kResolveCode[] =
 #include "shaders/resolve.comp.inc"
     ;
 
-static_assert(sizeof(shader::SplatChunk) == 120, "SplatChunk differs from its std430 layout");
-static_assert(sizeof(shader::SplatPush) == 32, "SplatPush differs from its std430 layout");
+static_assert(sizeof(shader::SplatChunk) == 128, "SplatChunk differs from its std430 layout");
+static_assert(sizeof(shader::SplatPush) == 40, "SplatPush differs from its std430 layout");
 static_assert(sizeof(shader::ResolvePush) == 72, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
 
@@ -134,7 +134,7 @@ struct PointRenderer::Resources {
         timeline(d),
         ring(d, a, o.upload_ring_bytes),
         gpu_nodes(d, a, o.gpu_budget_bytes),
-        slots{Slot{gpu::CommandPool(d, "frame slot 0"), {}}, Slot{gpu::CommandPool(d, "frame slot 1"), {}}},
+        slots{Slot{gpu::CommandPool(d, "frame slot 0"), {}, {}}, Slot{gpu::CommandPool(d, "frame slot 1"), {}, {}}},
         readback_pool(d, "readback"),
         overlay_pass(d, a) {
     if (o.gpu_timing) {
@@ -166,6 +166,7 @@ struct PointRenderer::Resources {
   struct Slot {
     gpu::CommandPool pool;
     gpu::Buffer chunks;  // host-visible SplatChunk table
+    gpu::Buffer clip;    // host-visible ClipPlanes, made with the first clipped frame
   };
 
   const gpu::Device& device;
@@ -208,6 +209,30 @@ struct PointRenderer::Resources {
     // The slot's last frame is done (paced): its table may go now.
     slot.chunks = gpu::Buffer(device, allocator, std::max<VkDeviceSize>(bytes, 2 * slot.chunks.size()),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, "chunk table");
+  }
+
+  // The region's planes, relative to its anchor, into the slot's ClipPlanes; its address.
+  VkDeviceAddress writeClip(Slot& slot, const ClipRegion& region) {
+    if (!slot.clip) {
+      slot.clip = gpu::Buffer(device, allocator, sizeof(shader::ClipPlanes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              gpu::kHostMemory, "clip planes");
+    }
+    shader::ClipPlanes planes{};
+    const Eigen::Vector3d anchor = region.anchor();
+    std::vector<HalfSpace> spaces = region.boxFaces();
+    planes.box_planes = static_cast<std::uint32_t>(spaces.size());
+    planes.keep_outside_box = region.keep_outside_box ? 1u : 0u;
+    for (const HalfSpace& h : region.planeHalfSpaces()) spaces.push_back(h);
+    planes.plane_count = static_cast<std::uint32_t>(spaces.size());
+    for (std::size_t i = 0; i < spaces.size(); ++i) {
+      // n . (anchor + p) + d = n . p + (d + n . anchor)
+      const HalfSpace& h = spaces[i];
+      for (Eigen::Index a = 0; a < 3; ++a)
+        planes.planes[4 * i + static_cast<std::size_t>(a)] = static_cast<float>(h[a]);
+      planes.planes[4 * i + 3] = static_cast<float>(h[3] + h.head<3>().dot(anchor));
+    }
+    std::memcpy(slot.clip.mapped(), &planes, sizeof planes);
+    return slot.clip.address();
   }
 
   void ensureReadback(VkDeviceSize bytes) {
@@ -273,6 +298,8 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                  const gpu::SwapchainImage* present_to) {
   Resources& r = *resources_;
   view::validateCamera(camera);
+  // Before the frame begins: a throw later would leave its submission unsent.
+  if (settings.clip.active()) checkClipRegion(settings.clip, "render");
   const std::uint64_t value = ++r.submitted;
   FrameStats stats;
   stats.frame = ++r.frames;
@@ -299,7 +326,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
 
   // 2. Select and upload.
   const lod::Octree& octree = r.nodes.octree();
-  const NodeSelection selection = selectNodes(octree, camera, settings.selection);
+  const NodeSelection selection = selectNodes(octree, camera, settings.selection, settings.clip);
   stats.nodes_selected = selection.nodes.size();
   stats.points_selected = selection.points;
   stats.budget_reached = selection.budget_reached;
@@ -355,6 +382,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   r.last_chunks.reserve(chunk_count);
 
   const double elevation_base = octree.header().bounds.min[2];
+  const Eigen::Vector3d clip_anchor = settings.clip.anchor();
   // Where no child of a node is drawn, its points are the finest there: splat them as squares
   // of their spacing on screen.
   std::unordered_set<lod::CellKey, lod::CellKeyHash> drawn_keys;
@@ -383,7 +411,9 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       chunk.point_count = std::min(shader::kChunkPoints, d.node->point_count - first);
       chunk.elevation_offset = static_cast<float>(origin[2] - elevation_base);
       chunk.point_size_px = point_size;
-      chunk.reserved = 0;
+      for (std::size_t a = 0; a < 3; ++a) {
+        chunk.clip_offset[a] = static_cast<float>(origin[a] - clip_anchor[static_cast<Eigen::Index>(a)]);
+      }
       r.last_chunks.push_back({d.info->key, first});
     }
     ++stats.nodes_drawn;
@@ -404,7 +434,8 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                  target.width,
                                  target.height,
                                  count,
-                                 static_cast<float>(camera.near_m)};
+                                 static_cast<float>(camera.near_m),
+                                 settings.clip.active() ? r.writeClip(slot, settings.clip) : 0};
     r.splat.dispatch(commands, push, count);
     gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);

@@ -22,6 +22,7 @@
 
 #include "engine/io/png_image.h"
 #include "engine/lod/cell_key.h"
+#include "engine/render/clip_region.h"
 #include "engine/render/gpu_node_cache.h"
 #include "engine/render/node_selection.h"
 #include "engine/render/overlay_scene.h"
@@ -62,6 +63,9 @@ struct RenderSettings {
   // An overlay hides behind the cloud where it lies further than the cloud's point at its pixel
   // by more than this fraction of the depth plus 1 cm (scanner noise, polygons fitted to it).
   float overlay_depth_tolerance = 0.005f;
+  // What is kept of the cloud (inactive: all of it); points cut away are neither drawn nor
+  // picked. Must pass checkClipRegion.
+  ClipRegion clip;
 };
 
 enum class NodeLoading : std::uint8_t {

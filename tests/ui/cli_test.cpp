@@ -280,7 +280,7 @@ TEST_F(Cli, GrowFindsTheRoomCornerPlanesFromAPointFile) {
 
   const Outcome bad = plumb("grow " + path("room.ply") + " --seed 1,2");
   EXPECT_EQ(bad.exit_code, 1);
-  EXPECT_NE(bad.err.find("--seed takes three finite numbers"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--seed takes 3 finite numbers"), std::string::npos) << bad.err;
 }
 
 TEST_F(Cli, OutputIntoAMissingFolderFailsCleanly) {
@@ -361,7 +361,44 @@ TEST_F(Cli, RenderRejectsBadArgumentsAndWritesNothing) {
   const Outcome missing = plumb("render " + path("nothing.ply") + " -o " + path("shot.png"));
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find(path("nothing.ply")), std::string::npos) << missing.err;
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--slice 1,0", "--slice: the thickness must be above 0"},
+           {"--slice 1", "--slice takes 2 finite numbers"},
+           {"--clip-box 1,2,3,4,5,nan", "--clip-box takes 6 to 7 finite numbers"},
+           {"--clip-box 1,2,3,4,5,-6", "--clip-box: each size must be above 0"},
+           {"--clip-outside", "--clip-outside needs a --clip-box"},
+           {"--clip-plane 0,0,1,0,0,0", "--clip-plane: the normal must not be 0"}}) {
+    const Outcome clip = plumb("render " + path("room.ply") + " " + arguments + " -o " + path("shot.png"));
+    EXPECT_NE(clip.exit_code, 0) << arguments;
+    EXPECT_NE(clip.err.find(message), std::string::npos) << arguments << ": " << clip.err;
+  }
   EXPECT_EQ(entries(), 1u) << "room.ply only";
+}
+
+// A slice at window height seen from above is the room's plan: the walls' thin lines, no floor
+// or ceiling; a clip box's outside leaves the room's shell without its middle.
+TEST_F(Cli, RenderDrawsOnlyWhatTheClippingKeeps) {
+  ASSERT_EQ(plumb("simulate --points 200000 --noise-mm 2 -o " + path("room.ply")).exit_code, 0);
+  auto litFraction = [&](const std::string& arguments) {
+    const Outcome run = plumb("render " + path("room.ply") + " --view top --size 320x200 --edl off " + arguments +
+                              " -o " + path("shot.png"));
+    EXPECT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
+    const plumb::io::RgbaImage image = plumb::io::readPng(path("shot.png"));
+    std::size_t lit = 0;
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) lit += image.pixel(x, y) != image.pixel(0, 0);
+    }
+    return static_cast<double>(lit) / (image.width * image.height);
+  };
+  const double whole = litFraction("");
+  const double plan = litFraction("--slice 1.15,0.1");
+  // The simulated room is 7 x 5 m: its walls' lines at 1.2 m cover a few per cent of the view.
+  EXPECT_GT(whole, 0.4);
+  EXPECT_GT(plan, 0.005);
+  EXPECT_LT(plan, 0.1);
+  const double shell = litFraction("--clip-box 3.5,2.5,1.25,6.6,4.6,10 --clip-outside");
+  EXPECT_GT(shell, plan);
+  EXPECT_LT(shell, 0.3 * whole);
 }
 
 }  // namespace

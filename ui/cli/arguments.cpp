@@ -25,20 +25,35 @@ std::string formatNumber(double value) {
 
 }  // namespace
 
-Eigen::Vector3d parseVector3(const std::string& text, const std::string& option) {
-  Eigen::Vector3d result;
+std::vector<double> parseNumbers(const std::string& text, std::size_t least, std::size_t most,
+                                 const std::string& option, const std::string& example) {
+  std::vector<double> numbers;
   std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
+  while (true) {
     const std::size_t comma = text.find(',', start);
-    const bool last = i == 2;
-    if (last != (comma == std::string::npos) ||
-        !parseFinite(std::string_view(text).substr(start, last ? std::string::npos : comma - start), result[i])) {
-      throw Error(option + " takes three finite numbers separated by commas, like 512000,5403000,250; got '" + text +
-                  "'");
+    const std::string_view piece =
+        std::string_view(text).substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    double value = 0.0;
+    if (!parseFinite(piece, value) || numbers.size() == most) {
+      numbers.clear();
+      break;
     }
+    numbers.push_back(value);
+    if (comma == std::string::npos) break;
     start = comma + 1;
   }
-  return result;
+  if (numbers.size() < least) {
+    const std::string count =
+        least == most ? std::to_string(least) : std::to_string(least) + " to " + std::to_string(most);
+    throw Error(option + " takes " + count + " finite numbers separated by commas, like " + example + "; got '" + text +
+                "'");
+  }
+  return numbers;
+}
+
+Eigen::Vector3d parseVector3(const std::string& text, const std::string& option) {
+  const std::vector<double> v = parseNumbers(text, 3, 3, option, "512000,5403000,250");
+  return {v[0], v[1], v[2]};
 }
 
 CLI::Validator finiteIn(double min, double max) {

@@ -5,11 +5,17 @@
 #include <CLI/Validators.hpp>
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace plumb::cli {
 
 // "X,Y,Z" as three finite numbers. Throws plumb::Error naming `option` otherwise.
 Eigen::Vector3d parseVector3(const std::string& text, const std::string& option);
+
+// Finite numbers separated by commas, `least` to `most` of them. Throws plumb::Error naming
+// `option` and showing `example` otherwise.
+std::vector<double> parseNumbers(const std::string& text, std::size_t least, std::size_t most,
+                                 const std::string& option, const std::string& example);
 
 // A CLI11 check: a finite number in [min, max] (CLI::Range lets NaN through).
 CLI::Validator finiteIn(double min, double max);

@@ -18,6 +18,7 @@
 #include "engine/view/camera_json.h"
 #include "engine/view/view_presets.h"
 #include "ui/cli/arguments.h"
+#include "ui/cli/clip_options.h"
 #include "ui/cli/cloud_input.h"
 #include "ui/cli/command.h"
 
@@ -34,6 +35,7 @@ struct RenderOptions {
   std::string colour = "auto";
   std::string gpu;
   std::string output;
+  ClipArguments clip;
 };
 
 // "1920x1080" -> {1920, 1080}; each side 1 to 16384.
@@ -70,6 +72,7 @@ Command addRenderCommand(CLI::App& plumb) {
   CLI::App* sub = plumb.add_subcommand("render", "Render a cloud to a PNG image off screen (Vulkan, no window needed)");
   sub->footer(
       "Example: plumb render site.plumb --view top --size 3840x2160 --budget 5000000 -o top.png\n"
+      "A plan at 1.2 m: plumb render site.plumb --view top --slice 1.15,0.1 -o plan.png\n"
       "The GPU: a discrete one first, else lavapipe on the CPU; --gpu or PLUMB_GPU chooses (cpu, discrete or a "
       "part of the name).");
   sub->add_option("cloud", options->cloud, "An octree (plumb import) or a point file, imported on the fly")->required();
@@ -87,6 +90,7 @@ Command addRenderCommand(CLI::App& plumb) {
                   "Colour by rgb, intensity, elevation or scan (a colour per scan of a cloud that merges several; "
                   "default auto: rgb where the cloud has colour, else intensity, else elevation)")
       ->check(CLI::IsMember({"auto", "rgb", "intensity", "elevation", "scan"}));
+  addClipOptions(*sub, options->clip);
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   sub->add_option("-o,--output", options->output, "The PNG to write")->required();
 
@@ -98,6 +102,7 @@ Command addRenderCommand(CLI::App& plumb) {
       size = {camera.viewport_width_px, camera.viewport_height_px};
     }
     if (!options->size.empty()) size = parseSize(options->size);
+    const render::ClipRegion clip = clipRegionOf(options->clip);
 
     const CloudInput cloud(options->cloud, "render");
     const lod::OctreeHeader& header = cloud.octree()->header();
@@ -127,6 +132,7 @@ Command addRenderCommand(CLI::App& plumb) {
       settings.selection.point_budget = options->budget;
       settings.edl = options->edl == "on";
       settings.colour = colourModeNamed(options->colour);
+      settings.clip = clip;
       const auto start = std::chrono::steady_clock::now();
       stats = renderer.renderComplete(camera, settings);
       image = renderer.readColour();

@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "engine/core/error.h"
 #include "engine/gpu/device.h"
 #include "engine/gpu/instance.h"
 #include "engine/gpu/memory.h"
@@ -364,6 +365,63 @@ TEST_F(PointRendererTest, OverlaysBlendAndHideBehindTheCloud) {
 
 // 100 random pixels, the scene 5,000 km from the origin: each pick is a point of the scene's
 // grid to the micrometre, on the surface the pixel shows, within the pick radius.
+// Clipping, at UTM coordinates: a box around part of the red wall keeps only that part (drawn,
+// picked), its outside keeps the rest, and a horizontal slice keeps a band of every wall; nodes
+// wholly cut away are not even selected.
+TEST_F(PointRendererTest, AClipBoxAndASliceKeepOnlyTheirPoints) {
+  lod::NodeCache nodes(far_walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight, far_offset_);
+  const Eigen::Vector3d offset(far_offset_.x, far_offset_.y, far_offset_.z);
+  const std::uint32_t background = packRgba(RenderSettings{}.background);
+  auto pixel = [&](const io::RgbaImage& image, double x, double z) {
+    const auto [column, row] = test::frontPixel(camera, x, z, far_offset_);
+    return image.pixel(column, row);
+  };
+  auto pickAt = [&](double x, double z) {
+    const auto [column, row] = test::frontPixel(camera, x, z, far_offset_);
+    return renderer.pick(column, row, 1);
+  };
+  const FrameStats whole = renderer.renderComplete(camera, flat());
+
+  RenderSettings settings = flat();
+  settings.clip.box = ClipBox{offset + Eigen::Vector3d(-2.0, 5.0, 1.5), Eigen::Vector3d(1.5, 0.5, 1.0), 0.0};
+  const FrameStats boxed = renderer.renderComplete(camera, settings);
+  io::RgbaImage image = renderer.readColour();
+  keepForInspection(image, "clip_box");
+  EXPECT_TRUE(near(pixel(image, -2.0, 1.5), 0xFF0000FF, 1));  // red, inside the box
+  EXPECT_TRUE(near(pixel(image, -2.0, 0.2), background, 1));  // below it
+  EXPECT_TRUE(near(pixel(image, 2.0, 1.5), background, 1));   // the green wall
+  EXPECT_TRUE(near(pixel(image, 0.0, 1.5), background, 1));   // the square, in front of the box
+  ASSERT_TRUE(pickAt(-2.0, 1.5).has_value());
+  EXPECT_NEAR(pickAt(-2.0, 1.5)->position[1], offset.y() + 5.0, 1e-6);
+  EXPECT_FALSE(pickAt(-2.0, 0.2).has_value());
+  EXPECT_FALSE(pickAt(2.0, 1.5).has_value());
+  EXPECT_LT(boxed.points_selected, whole.points_selected);
+
+  settings.clip.keep_outside_box = true;
+  renderer.renderComplete(camera, settings);
+  image = renderer.readColour();
+  EXPECT_TRUE(near(pixel(image, -2.0, 1.5), background, 1));
+  EXPECT_TRUE(near(pixel(image, -2.0, 0.2), 0xFF0000FF, 1));
+  EXPECT_TRUE(near(pixel(image, 2.0, 1.5), 0xFF00FF00, 1));
+  EXPECT_TRUE(near(pixel(image, 0.0, 1.5), 0xFFFF0000, 1));
+
+  settings.clip = horizontalSlice(offset.z() + 0.3, 0.4);
+  const FrameStats sliced = renderer.renderComplete(camera, settings);
+  image = renderer.readColour();
+  keepForInspection(image, "clip_slice");
+  EXPECT_TRUE(near(pixel(image, -2.0, 0.5), 0xFF0000FF, 1));
+  EXPECT_TRUE(near(pixel(image, 2.0, 0.5), 0xFF00FF00, 1));
+  EXPECT_TRUE(near(pixel(image, -2.0, 0.2), background, 1));
+  EXPECT_TRUE(near(pixel(image, 2.0, 2.5), background, 1));
+  EXPECT_TRUE(near(pixel(image, 0.0, 1.5), background, 1));
+  EXPECT_LT(sliced.points_selected, whole.points_selected);
+
+  settings.clip.planes.push_back({offset, Eigen::Vector3d(0.5, 0.0, 0.0)});  // not a unit normal
+  EXPECT_THROW(renderer.renderComplete(camera, settings), Error);
+}
+
 TEST_F(PointRendererTest, PickingReturnsTheVisiblePointInWorldCoordinates) {
   lod::NodeCache nodes(far_walls_, 64 << 20);
   PointRenderer renderer(*device_, *allocator_, nodes);

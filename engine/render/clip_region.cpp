@@ -1,0 +1,116 @@
+#include "engine/render/clip_region.h"
+
+#include <cmath>
+#include <string>
+
+#include "engine/core/error.h"
+
+namespace plumb::render {
+namespace {
+
+HalfSpace halfSpace(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+  return {normal.x(), normal.y(), normal.z(), -normal.dot(point)};
+}
+
+bool inside(const std::vector<HalfSpace>& spaces, const Eigen::Vector3d& p) {
+  for (const HalfSpace& h : spaces) {
+    if (h.head<3>().dot(p) + h[3] < 0.0) return false;
+  }
+  return true;
+}
+
+// The largest and smallest value of n . x + d over the cell's corners.
+std::pair<double, double> range(const HalfSpace& h, const lod::Box3& cell) {
+  double low = h[3], high = h[3];
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double n = h[static_cast<Eigen::Index>(a)];
+    low += n * (n >= 0.0 ? cell.min[a] : cell.max[a]);
+    high += n * (n >= 0.0 ? cell.max[a] : cell.min[a]);
+  }
+  return {low, high};
+}
+
+}  // namespace
+
+Eigen::Vector3d ClipRegion::anchor() const {
+  if (box) return box->centre;
+  if (!planes.empty()) return planes.front().point;
+  return Eigen::Vector3d::Zero();
+}
+
+std::vector<HalfSpace> ClipRegion::boxFaces() const {
+  if (!box) return {};
+  const Eigen::Matrix3d axes = Eigen::AngleAxisd(box->yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  std::vector<HalfSpace> faces;
+  for (Eigen::Index a = 0; a < 3; ++a) {
+    const Eigen::Vector3d axis = axes.col(a);
+    faces.push_back(halfSpace(box->centre + box->half_size[a] * axis, -axis));
+    faces.push_back(halfSpace(box->centre - box->half_size[a] * axis, axis));
+  }
+  return faces;
+}
+
+std::vector<HalfSpace> ClipRegion::planeHalfSpaces() const {
+  std::vector<HalfSpace> spaces;
+  for (const ClipPlane& plane : planes) spaces.push_back(halfSpace(plane.point, plane.normal));
+  return spaces;
+}
+
+bool ClipRegion::keeps(const Eigen::Vector3d& position) const {
+  if (!inside(planeHalfSpaces(), position)) return false;
+  if (!box) return true;
+  return inside(boxFaces(), position) != keep_outside_box;
+}
+
+bool ClipRegion::cutsAway(const lod::Box3& cell) const {
+  for (const HalfSpace& h : planeHalfSpaces()) {
+    if (range(h, cell).second < 0.0) return true;
+  }
+  if (!box) return false;
+  bool wholly_inside = true;
+  for (const HalfSpace& h : boxFaces()) {
+    const auto [low, high] = range(h, cell);
+    if (high < 0.0 && !keep_outside_box) return true;  // wholly outside one face
+    if (low < 0.0) wholly_inside = false;
+  }
+  return keep_outside_box && wholly_inside;
+}
+
+void checkClipRegion(const ClipRegion& region, const char* what) {
+  if (region.box) {
+    const ClipBox& box = *region.box;
+    if (!box.centre.allFinite() || !std::isfinite(box.yaw_rad) || !box.half_size.allFinite() ||
+        !(box.half_size.minCoeff() > 0.0)) {
+      throw Error(std::string(what) + ": the clip box needs a finite centre and turn and a size above 0 on each axis");
+    }
+  }
+  for (std::size_t i = 0; i < region.planes.size(); ++i) {
+    const ClipPlane& plane = region.planes[i];
+    if (!plane.point.allFinite() || !plane.normal.allFinite() || std::abs(plane.normal.norm() - 1.0) > 1e-6) {
+      throw Error(std::string(what) + ": clip plane " + std::to_string(i + 1) +
+                  " needs a finite point and a unit normal");
+    }
+  }
+  const std::size_t planes = region.planes.size() + (region.box ? 6 : 0);
+  if (planes > ClipRegion::kMaxPlanes) {
+    throw Error(std::string(what) + ": " + std::to_string(planes) + " clip planes (the box's six included); at most " +
+                std::to_string(ClipRegion::kMaxPlanes));
+  }
+}
+
+ClipRegion horizontalSlice(double bottom_z, double thickness) {
+  ClipRegion region;
+  region.planes.push_back({{0.0, 0.0, bottom_z}, Eigen::Vector3d::UnitZ()});
+  region.planes.push_back({{0.0, 0.0, bottom_z + thickness}, -Eigen::Vector3d::UnitZ()});
+  return region;
+}
+
+ClipRegion slabAbout(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double thickness) {
+  const Eigen::Vector3d n = normal.normalized();
+  ClipRegion region;
+  region.planes.push_back({point - 0.5 * thickness * n, n});
+  region.planes.push_back({point + 0.5 * thickness * n, -n});
+  return region;
+}
+
+}  // namespace plumb::render

@@ -1,0 +1,67 @@
+#pragma once
+// What the view keeps of a cloud (issue 22, clipping and slices): a box turned about the
+// vertical whose inside, or outside, is kept, and any number of clip planes, each keeping the
+// side its normal points to. A horizontal slice is two planes facing each other a thickness
+// apart; an elevation's slab is the same about a picked plane.
+//
+// The splat draws only the points kept (shaders/splat.comp.glsl), so picking, which reads what
+// was drawn, finds only them; node selection skips nodes wholly cut away, so the point budget
+// goes to what is kept and a thin slab is drawn in full detail. keeps() is the same test on the
+// host, for tests and for limiting grows to the region.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "engine/lod/cube.h"
+
+namespace plumb::render {
+
+struct ClipBox {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Vector3d half_size = Eigen::Vector3d::Ones();  // along the box's own axes, each > 0
+  double yaw_rad = 0.0;                                 // the box's x axis turned from the world's about +z
+};
+
+struct ClipPlane {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // the kept side; unit length
+};
+
+// A half-space n . x + d >= 0 in world coordinates.
+using HalfSpace = Eigen::Vector4d;
+
+struct ClipRegion {
+  std::optional<ClipBox> box;
+  bool keep_outside_box = false;
+  std::vector<ClipPlane> planes;
+
+  // The shaders take this many planes, the box's six among them.
+  static constexpr std::size_t kMaxPlanes = 32;
+
+  bool active() const { return box.has_value() || !planes.empty(); }
+  // Where the GPU's positions are taken from (relative positions keep float precision near it):
+  // the box's centre, else the first plane's point, else the origin.
+  Eigen::Vector3d anchor() const;
+  // The box's six faces, each keeping the inside (empty without a box).
+  std::vector<HalfSpace> boxFaces() const;
+  std::vector<HalfSpace> planeHalfSpaces() const;
+
+  bool keeps(const Eigen::Vector3d& position) const;
+  // Whether no point of `cell` can be kept: the node may be skipped. Conservative: false when
+  // unsure.
+  bool cutsAway(const lod::Box3& cell) const;
+};
+
+// Throws plumb::Error naming `what` for a region the renderer cannot take: a box of no or
+// non-finite size, a plane without a finite unit normal, more than kMaxPlanes planes in all.
+void checkClipRegion(const ClipRegion& region, const char* what);
+
+// A horizontal slice: the points from `bottom_z` up to `bottom_z + thickness`.
+ClipRegion horizontalSlice(double bottom_z, double thickness);
+// A slab of `thickness` centred on a plane (an elevation of a facade): both sides within
+// thickness / 2.
+ClipRegion slabAbout(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double thickness);
+
+}  // namespace plumb::render
