@@ -98,6 +98,14 @@ void checkClipRegion(const ClipRegion& region, const char* what) {
   }
 }
 
+ClipRegion ClipSettings::region() const {
+  ClipRegion region = slice ? horizontalSlice(slice_bottom_z, slice_thickness) : ClipRegion{};
+  region.box = box;
+  region.keep_outside_box = keep_outside_box;
+  region.planes.insert(region.planes.end(), planes.begin(), planes.end());
+  return region;
+}
+
 ClipRegion horizontalSlice(double bottom_z, double thickness) {
   ClipRegion region;
   region.planes.push_back({{0.0, 0.0, bottom_z}, Eigen::Vector3d::UnitZ()});

@@ -54,6 +54,18 @@ struct ClipRegion {
   bool cutsAway(const lod::Box3& cell) const;
 };
 
+// A region as a user states it (plumb render's and plumb view's options, the viewer's View
+// panel): a horizontal slice, a box, planes; region() composes them.
+struct ClipSettings {
+  bool slice = false;
+  double slice_bottom_z = 0.0, slice_thickness = 0.1;
+  std::optional<ClipBox> box;
+  bool keep_outside_box = false;
+  std::vector<ClipPlane> planes;
+
+  ClipRegion region() const;
+};
+
 // Throws plumb::Error naming `what` for a region the renderer cannot take: a box of no or
 // non-finite size, a plane without a finite unit normal, more than kMaxPlanes planes in all.
 void checkClipRegion(const ClipRegion& region, const char* what);

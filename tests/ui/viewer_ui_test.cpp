@@ -164,8 +164,9 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   double nearest_m = INFINITY;
   for (const json& found : dump.at("corners"))
     nearest_m = std::min(nearest_m, (vector3(found.at("position")) - corner).norm());
-  std::printf("%zu segments, %zu corners; the nearest %.4f mm from the true corner (the limit's standard error %.4f mm)\n",
-              dump.at("segments").size(), dump.at("corners").size(), nearest_m * 1e3, limit.standard_error_m * 1e3);
+  std::printf(
+      "%zu segments, %zu corners; the nearest %.4f mm from the true corner (the limit's standard error %.4f mm)\n",
+      dump.at("segments").size(), dump.at("corners").size(), nearest_m * 1e3, limit.standard_error_m * 1e3);
   EXPECT_LT(nearest_m, allowed_m) << "no corner within " << allowed_m * 1e3 << " mm of the room's (2 mm noise)";
   const json& measure = dump.at("measure");
   ASSERT_FALSE(measure.is_null()) << "the measurement did not happen";
@@ -179,6 +180,40 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   std::printf("measured %.4f mm off the truth (allowed %.4f mm)\n",
               (measure.at("distance_m").get<double>() - (on_wall - corner).norm()) * 1e3, measure_allowed_m * 1e3);
   EXPECT_NEAR(measure.at("distance_m").get<double>(), (on_wall - corner).norm(), measure_allowed_m);
+}
+
+// A slice (plumb view --slice) keeps a band of the room: seen from above, a click on the
+// ceiling's place finds nothing to grow (ceiling and floor are cut away, so nothing is picked),
+// while a click on a wall inside the band grows the wall; Page Up steps the slice.
+TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
+  const plumb::test::TempDirectory dir;
+  const fs::path ply = dir.file("room.ply"), scene = dir.file("scene.json");
+  const std::string simulate = std::string("'") + PLUMB_BINARY + "' simulate --scene room --points 200000 " +
+                               "--noise-mm 2 -o '" + ply.string() + "' >/dev/null";
+  ASSERT_EQ(std::system(simulate.c_str()), 0);
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"key", "1"}},  // from above
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"click_world", json::array({3.5, 2.5, 2.5})}},  // the ceiling's middle: cut away
+      {{"wait", "grower_idle"}, {"timeout_s", 300}},
+      {{"key", "PAGE_DOWN"}},  // 1.05 to 1.15 m: the wall stays in the band
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"click_world", json::array({2.0, 5.0, 1.1})}},  // the y = 5 m wall, beside the window
+      {{"wait", "grower_idle"}, {"timeout_s", 300}},
+      {{"screenshot", "slice.png"}},
+  });
+  std::string arguments = "'";
+  arguments += ply.string();
+  arguments += "' --slice 1.15,0.1";
+  ASSERT_EQ(plumb::test::runViewerSession(dir, arguments, steps, 1280, 720), 0);
+  plumb::test::keepScreenshots(dir);
+  const json dump = readJson(scene);
+  ASSERT_GE(dump.at("segments").size(), 1u) << "the wall in the band grows";
+  for (const json& segment : dump.at("segments")) {
+    const Eigen::Vector3d normal = vector3(segment.at("normal"));
+    EXPECT_LT(std::abs(normal.z()), 0.1) << "a horizontal plane was grown: " << segment.dump();
+  }
 }
 
 }  // namespace

@@ -20,12 +20,14 @@ void addClipOptions(CLI::App& command, ClipArguments& arguments) {
                      "Keep a horizontal slice: the points from height Z up to Z + THICKNESS (metres): Z,THICKNESS");
 }
 
-render::ClipRegion clipRegionOf(const ClipArguments& arguments) {
-  render::ClipRegion region;
+render::ClipSettings clipSettingsOf(const ClipArguments& arguments) {
+  render::ClipSettings region;
   if (!arguments.slice.empty()) {
     const std::vector<double> v = parseNumbers(arguments.slice, 2, 2, "--slice", "1.0,0.1");
     if (!(v[1] > 0.0)) throw Error("--slice: the thickness must be above 0; got " + arguments.slice);
-    region = render::horizontalSlice(v[0], v[1]);
+    region.slice = true;
+    region.slice_bottom_z = v[0];
+    region.slice_thickness = v[1];
   }
   if (!arguments.box.empty()) {
     const std::vector<double> v = parseNumbers(arguments.box, 6, 7, "--clip-box", "2,3,1.5,4,5,3,30");
@@ -42,7 +44,7 @@ render::ClipRegion clipRegionOf(const ClipArguments& arguments) {
     if (!(normal.norm() > 0.0)) throw Error("--clip-plane: the normal must not be 0; got " + text);
     region.planes.push_back({{v[0], v[1], v[2]}, normal.normalized()});
   }
-  render::checkClipRegion(region, "clipping");
+  render::checkClipRegion(region.region(), "clipping");
   return region;
 }
 

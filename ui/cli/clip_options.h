@@ -1,6 +1,6 @@
 #pragma once
-// The clipping options of the commands that draw a cloud (plumb render): a box, its inside or
-// outside kept, clip planes and a horizontal slice, turned into a render::ClipRegion.
+// The clipping options of the commands that draw a cloud (plumb render, plumb view): a box, its
+// inside or outside kept, clip planes and a horizontal slice, as render::ClipSettings.
 
 #include <string>
 #include <vector>
@@ -23,6 +23,6 @@ struct ClipArguments {
 void addClipOptions(CLI::App& command, ClipArguments& arguments);
 
 // Throws plumb::Error naming the option for a malformed or impossible value.
-render::ClipRegion clipRegionOf(const ClipArguments& arguments);
+render::ClipSettings clipSettingsOf(const ClipArguments& arguments);
 
 }  // namespace plumb::cli

@@ -6,6 +6,7 @@
 
 #include "engine/core/error.h"
 #include "engine/view/camera_json.h"
+#include "ui/cli/clip_options.h"
 #include "ui/cli/command.h"
 #include "ui/viewer/demo_scan.h"
 #include "ui/viewer/headless_demo.h"
@@ -17,6 +18,7 @@ namespace plumb::cli {
 
 Command addViewCommand(CLI::App& plumb) {
   auto options = std::make_shared<viewer::ViewerOptions>();
+  auto clip = std::make_shared<ClipArguments>();
   auto camera = std::make_shared<std::string>();
   auto headless_out = std::make_shared<std::string>();
   CLI::App* sub =
@@ -59,6 +61,7 @@ Command addViewCommand(CLI::App& plumb) {
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
+  addClipOptions(*sub, *clip);
   sub->add_flag("!--fixed-quality", options->adaptive_quality,
                 "Render a moving view as a still one (by default it drops resolution and points to keep 30 fps)");
   sub->add_flag("--real-time", options->script_wall_clock,
@@ -70,8 +73,9 @@ Command addViewCommand(CLI::App& plumb) {
   sub->add_option("--headless-out", *headless_out,
                   "The headless demo's PNG (default: the cache directory's demo-view.png)");
 
-  auto run = [options, camera, headless_out]() -> int {
+  auto run = [options, camera, headless_out, clip]() -> int {
     if (!camera->empty()) options->camera = view::readCameraJson(*camera);
+    options->clip = clipSettingsOf(*clip);
     // A project that cannot be opened stops here, display or none, and is left as it is.
     if (!options->project.empty()) viewer::ProjectSession::open(options->project, options->cloud);
     if (!viewer::WindowSystem::displayAvailable()) {

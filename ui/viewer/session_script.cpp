@@ -36,6 +36,8 @@ int keyCode(const std::string& name) {
                                                  {"RIGHT", GLFW_KEY_RIGHT},
                                                  {"UP", GLFW_KEY_UP},
                                                  {"DOWN", GLFW_KEY_DOWN},
+                                                 {"PAGE_UP", GLFW_KEY_PAGE_UP},
+                                                 {"PAGE_DOWN", GLFW_KEY_PAGE_DOWN},
                                                  {"LEFT_SHIFT", GLFW_KEY_LEFT_SHIFT},
                                                  {"LEFT_CONTROL", GLFW_KEY_LEFT_CONTROL},
                                                  {"MINUS", GLFW_KEY_MINUS}};

@@ -12,7 +12,7 @@
 //   {"drag": [x0, y0, x1, y1], "button": "left", "steps": 10}
 //   {"wheel": 1.0, "at": [x, y]}           positive zooms in
 //   {"key": "F", "hold_frames": 0}         a key press and release (GLFW key names: A-Z, 0-9,
-//                                          ESCAPE, SPACE, TAB, ENTER, DELETE, F1-F12, ...)
+//                                          ESCAPE, SPACE, TAB, ENTER, DELETE, PAGE_UP, F1-F12, ...)
 //   {"key_down": "LEFT_SHIFT"} | {"key_up": "LEFT_SHIFT"}   a key held across steps
 //   {"type": "1.25"}                       text, a key and its character per frame
 //   {"tool": "grow"}                       choose a tool (navigate, grow, measure, polygon, move,

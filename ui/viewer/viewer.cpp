@@ -83,6 +83,7 @@ Viewer::Viewer(const ViewerOptions& options)
   adaptive_quality_ = options.adaptive_quality;
   settings_.selection.point_budget = options.budget_points > 0 ? options.budget_points : (cpu ? 1'000'000 : 5'000'000);
   grow_panel_.plane_threshold_m = static_cast<float>(options.plane_threshold_m);
+  clip_ = options.clip;
   grow_panel_.threshold_from_data = options.plane_threshold_from_data;
   jobs_.setWakeUp([] { Window::wakeUp(); });
   project_.setAutosaveInterval(std::chrono::milliseconds(std::lround(options.autosave_s * 1e3)));
@@ -593,6 +594,14 @@ void Viewer::handleViewEvent(const InputEvent& event) {
           return;
         case GLFW_KEY_K:
           return cornerOfSelected();
+        case GLFW_KEY_PAGE_UP:
+        case GLFW_KEY_PAGE_DOWN:
+          // The slice steps through the building by its thickness.
+          if (clip_.slice) {
+            clip_.slice_bottom_z += (event.key == GLFW_KEY_PAGE_UP ? 1.0 : -1.0) * clip_.slice_thickness;
+            return;
+          }
+          break;
         default:
           break;
       }
@@ -787,6 +796,7 @@ void Viewer::render(bool screenshot, const std::string& screenshot_name) {
   }
   const double scale = last_frame_moved_ && adaptive_quality_ ? moving_scale_ : render_scale_;
   render::RenderSettings frame_settings = settings_;
+  frame_settings.clip = clip_.region();
   const double pixel_share = (scale * scale) / (static_cast<double>(render_scale_) * render_scale_);
   frame_settings.selection.point_budget = std::max<std::uint64_t>(
       10'000, static_cast<std::uint64_t>(static_cast<double>(settings_.selection.point_budget) * pixel_share));

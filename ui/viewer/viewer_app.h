@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/render/clip_region.h"
 #include "engine/view/camera.h"
 
 namespace plumb::viewer {
@@ -20,7 +21,7 @@ struct ViewerOptions {
   // The project (.plumbproj) to open and save; empty: "<cloud>.plumbproj" (the demo's in the
   // cache directory). Its cloud and camera are used unless `cloud` and `camera` are given.
   std::string project;
-  std::string script;                  // a session script (session_script.h); empty: interactive
+  std::string script;  // a session script (session_script.h); empty: interactive
   // A script runs on its own clock, 30 frames a second whatever the machine's load, so that it
   // replays the same; the wall clock instead measures what navigation costs (benchmarks).
   bool script_wall_clock = false;
@@ -39,6 +40,8 @@ struct ViewerOptions {
   bool profile = false;
   // While the view moves, render fewer pixels and points to keep 30 frames per second.
   bool adaptive_quality = true;
+  // What the view keeps of the cloud at first (--slice, --clip-box, ...); the View panel changes it.
+  render::ClipSettings clip;
 };
 
 // Runs the viewer until its window closes or its script ends. Returns the exit status: non-zero

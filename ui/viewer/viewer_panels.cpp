@@ -365,6 +365,7 @@ void Viewer::drawViewPanel() {
   }
   tooltip("Scan: a colour per scan of a cloud that merges several (E57 scans, or several files imported together)");
   if (settings_.colour == render::ColourMode::kScan && cloud_) drawScanLegend();
+  if (cloud_) drawSectionControls();
   ImGui::Checkbox("Eye-dome lighting", &settings_.edl);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(100);
@@ -375,6 +376,62 @@ void Viewer::drawViewPanel() {
   ImGui::Text("%" PRIu64 " points in %" PRIu64 " nodes, %" PRIu64 " to load", last_stats_.points_drawn,
               last_stats_.nodes_drawn, last_stats_.nodes_missing);
   endInColumn(true);
+}
+
+// The section: a horizontal slice (stepped with Page Up and Page Down) and a clip box; what they
+// cut away is neither drawn nor picked.
+void Viewer::drawSectionControls() {
+  ImGui::Separator();
+  const lod::Box3& bounds = cloud_->octree->header().bounds;
+  bool slice = clip_.slice;
+  if (ImGui::Checkbox("Slice", &slice)) {
+    // A new slice starts at the height the view looks at.
+    if (slice) clip_.slice_bottom_z = cloud_->navigator->camera().target.z() - 0.5 * clip_.slice_thickness;
+    clip_.slice = slice;
+  }
+  tooltip("Keep a horizontal band of the cloud; Page Up and Page Down step it by its thickness");
+  if (clip_.slice) {
+    ImGui::SameLine();
+    if (ImGui::Button("Plan")) cloud_->navigator->showPreset(view::ViewPreset::kTop);
+    tooltip("Orthographic, from above: the slice as a plan");
+    const double low = bounds.min[2] - 1.0, high = bounds.max[2] + 1.0, thin = 0.005, thick = 10.0;
+    ImGui::DragScalar("Bottom (m)", ImGuiDataType_Double, &clip_.slice_bottom_z, 0.01f, &low, &high, "%.3f");
+    ImGui::DragScalar("Thickness (m)", ImGuiDataType_Double, &clip_.slice_thickness, 0.005f, &thin, &thick, "%.3f",
+                      ImGuiSliderFlags_AlwaysClamp);
+  }
+  bool box = clip_.box.has_value();
+  if (ImGui::Checkbox("Clip box", &box)) {
+    // A new box holds the whole cloud: shrink it from there.
+    if (box) {
+      render::ClipBox whole;
+      for (std::size_t a = 0; a < 3; ++a) {
+        whole.centre[static_cast<Eigen::Index>(a)] = 0.5 * (bounds.min[a] + bounds.max[a]);
+        whole.half_size[static_cast<Eigen::Index>(a)] = std::max(0.5 * (bounds.max[a] - bounds.min[a]), 0.05);
+      }
+      clip_.box = whole;
+    } else {
+      clip_.box.reset();
+    }
+  }
+  tooltip("Keep the points inside a box (or outside it)");
+  if (clip_.box) {
+    ImGui::SameLine();
+    ImGui::Checkbox("Keep outside", &clip_.keep_outside_box);
+    render::ClipBox& b = *clip_.box;
+    ImGui::DragScalarN("Centre", ImGuiDataType_Double, b.centre.data(), 3, 0.02f, nullptr, nullptr, "%.2f");
+    Eigen::Vector3d size = 2.0 * b.half_size;
+    const double smallest = 0.01, largest = 1e6;
+    if (ImGui::DragScalarN("Size", ImGuiDataType_Double, size.data(), 3, 0.02f, &smallest, &largest, "%.2f",
+                           ImGuiSliderFlags_AlwaysClamp)) {
+      b.half_size = 0.5 * size.cwiseMax(smallest);
+    }
+    double yaw_deg = b.yaw_rad * 180.0 / M_PI;
+    const double turn_low = -180.0, turn_high = 180.0;
+    if (ImGui::DragScalar("Turn (deg)", ImGuiDataType_Double, &yaw_deg, 0.5f, &turn_low, &turn_high, "%.1f",
+                          ImGuiSliderFlags_AlwaysClamp)) {
+      b.yaw_rad = yaw_deg * M_PI / 180.0;
+    }
+  }
 }
 
 // The scans' colours and names; a long list scrolls.
