@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/view/camera.h"
+#include "engine/view/clip_region.h"
 #include "reco/outline.h"
 #include "reco/plane.h"
 
@@ -81,6 +82,8 @@ struct Project {
   // project file's folder). May be empty (a project of the built-in demo records the demo path).
   std::string cloud_path;
   std::optional<view::Camera> camera;
+  // The view's section (slice, clip box, planes) when one is on.
+  std::optional<view::ClipSettings> section;
   std::vector<Group> groups;
   std::vector<Segment> segments;
   std::vector<Edge> edges;

@@ -209,12 +209,66 @@ OrderedJson itemJson(ItemId id, const std::string& name, ItemId group) {
   return json;
 }
 
+OrderedJson sectionJson(const view::ClipSettings& section) {
+  OrderedJson json;
+  if (section.slice) json["slice"] = {{"bottom_z", section.slice_bottom_z}, {"thickness", section.slice_thickness}};
+  if (section.box) {
+    json["box"] = {{"centre", vector(section.box->centre)},
+                   {"size", vector(Eigen::Vector3d(2.0 * section.box->half_size))},
+                   {"turn_rad", section.box->yaw_rad},
+                   {"keep_outside", section.keep_outside_box}};
+  }
+  json["planes"] = OrderedJson::array();
+  for (const view::ClipPlane& plane : section.planes) {
+    json["planes"].push_back({{"point", vector(plane.point)}, {"normal", vector(plane.normal)}});
+  }
+  return json;
+}
+
+view::ClipSettings readSection(const JsonPlace& at) {
+  at.expectObject({"slice", "box", "planes"});
+  view::ClipSettings section;
+  if (const auto slice = at.optionalField("slice")) {
+    slice->expectObject({"bottom_z", "thickness"});
+    section.slice = true;
+    section.slice_bottom_z = slice->field("bottom_z").number();
+    section.slice_thickness = slice->field("thickness").number();
+    if (!(section.slice_thickness > 0.0)) throw slice->field("thickness").error("must be above 0");
+  }
+  if (const auto box = at.optionalField("box")) {
+    box->expectObject({"centre", "size", "turn_rad", "keep_outside"});
+    const Eigen::Vector3d size = box->field("size").vector3();
+    if (!(size.minCoeff() > 0.0)) throw box->field("size").error("each size must be above 0");
+    section.box = view::ClipBox{box->field("centre").vector3(), 0.5 * size, box->field("turn_rad").number()};
+    const JsonPlace outside = box->field("keep_outside");
+    if (!outside.value().is_boolean()) throw outside.error("expected true or false");
+    section.keep_outside_box = outside.value().get<bool>();
+  }
+  if (const auto planes = at.optionalField("planes")) {
+    const std::size_t count = planes->expectArray();
+    for (std::size_t i = 0; i < count; ++i) {
+      const JsonPlace plane = planes->element(i);
+      plane.expectObject({"point", "normal"});
+      const Eigen::Vector3d normal = plane.field("normal").vector3();
+      if (std::abs(normal.norm() - 1.0) > 1e-6) throw plane.field("normal").error("must be a unit vector");
+      section.planes.push_back({plane.field("point").vector3(), normal});
+    }
+  }
+  try {
+    view::checkClipRegion(section.region(), "section");
+  } catch (const Error& error) {
+    throw at.error(error.what());
+  }
+  return section;
+}
+
 OrderedJson projectJson(const Project& project) {
   OrderedJson json;
   json["format"] = kFormat;
   json["version"] = kProjectFileVersion;
   json["cloud"] = project.cloud_path;
   if (project.camera) json["camera"] = OrderedJson::parse(view::cameraJsonObject(*project.camera));
+  if (project.section && project.section->active()) json["section"] = sectionJson(*project.section);
   json["groups"] = OrderedJson::array();
   for (const Group& group : project.groups) json["groups"].push_back({{"id", group.id}, {"name", group.name}});
   json["segments"] = OrderedJson::array();
@@ -316,13 +370,15 @@ Project readProjectFile(const std::string& path) {
     throw version.error("written by a newer Plumb (version " + std::to_string(number) + "); this build reads up to " +
                         std::to_string(kProjectFileVersion) + ": update Plumb");
   }
-  root.expectObject({"format", "version", "cloud", "camera", "groups", "segments", "edges", "corners", "polygons"});
+  root.expectObject(
+      {"format", "version", "cloud", "camera", "section", "groups", "segments", "edges", "corners", "polygons"});
 
   Project project;
   project.cloud_path = optionalString(root, "cloud");
   if (const auto camera = root.optionalField("camera")) {
     project.camera = view::cameraFromJsonObject(camera->value().dump(), path, camera->place());
   }
+  if (const auto section = root.optionalField("section")) project.section = readSection(*section);
   project.groups = readList(root, "groups", readGroup);
   project.segments = readList(root, "segments", readSegment);
   project.edges = readList(root, "edges", readEdge);

@@ -76,7 +76,7 @@ class ScreenScale {
 }  // namespace
 
 NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera, const SelectionOptions& options,
-                          const ClipRegion& clip) {
+                          const view::ClipRegion& clip) {
   NodeSelection selection;
   const auto planes = frustumPlanes(camera);
   const ScreenScale scale(camera);
@@ -92,7 +92,8 @@ NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera,
     const lod::NodeInfo* node = octree.find(key);
     if (node == nullptr) return;
     const lod::Box3 box = cube.cellBox(key);
-    if (outside(planes, box) || (clip.active() && clip.cutsAway(box))) {
+    if (outside(planes, box) || (clip.active() && clip.cutsAway(Eigen::Vector3d(box.min[0], box.min[1], box.min[2]),
+                                                                Eigen::Vector3d(box.max[0], box.max[1], box.max[2])))) {
       ++selection.culled;
       return;
     }

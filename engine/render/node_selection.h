@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/render/clip_region.h"
+#include "engine/view/clip_region.h"
 
 namespace plumb::lod {
 class Octree;
@@ -45,6 +45,6 @@ struct NodeSelection {
 // The camera must be valid (view::validateCamera).
 // Nodes the clip region cuts away wholly are skipped like those outside the frustum.
 NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera, const SelectionOptions& options,
-                          const ClipRegion& clip = {});
+                          const view::ClipRegion& clip = {});
 
 }  // namespace plumb::render

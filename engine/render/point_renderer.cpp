@@ -212,21 +212,21 @@ struct PointRenderer::Resources {
   }
 
   // The region's planes, relative to its anchor, into the slot's ClipPlanes; its address.
-  VkDeviceAddress writeClip(Slot& slot, const ClipRegion& region) {
+  VkDeviceAddress writeClip(Slot& slot, const view::ClipRegion& region) {
     if (!slot.clip) {
       slot.clip = gpu::Buffer(device, allocator, sizeof(shader::ClipPlanes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               gpu::kHostMemory, "clip planes");
     }
     shader::ClipPlanes planes{};
     const Eigen::Vector3d anchor = region.anchor();
-    std::vector<HalfSpace> spaces = region.boxFaces();
+    std::vector<view::HalfSpace> spaces = region.boxFaces();
     planes.box_planes = static_cast<std::uint32_t>(spaces.size());
     planes.keep_outside_box = region.keep_outside_box ? 1u : 0u;
-    for (const HalfSpace& h : region.planeHalfSpaces()) spaces.push_back(h);
+    for (const view::HalfSpace& h : region.planeHalfSpaces()) spaces.push_back(h);
     planes.plane_count = static_cast<std::uint32_t>(spaces.size());
     for (std::size_t i = 0; i < spaces.size(); ++i) {
       // n . (anchor + p) + d = n . p + (d + n . anchor)
-      const HalfSpace& h = spaces[i];
+      const view::HalfSpace& h = spaces[i];
       for (Eigen::Index a = 0; a < 3; ++a)
         planes.planes[4 * i + static_cast<std::size_t>(a)] = static_cast<float>(h[a]);
       planes.planes[4 * i + 3] = static_cast<float>(h[3] + h.head<3>().dot(anchor));
@@ -299,7 +299,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   Resources& r = *resources_;
   view::validateCamera(camera);
   // Before the frame begins: a throw later would leave its submission unsent.
-  if (settings.clip.active()) checkClipRegion(settings.clip, "render");
+  if (settings.clip.active()) view::checkClipRegion(settings.clip, "render");
   const std::uint64_t value = ++r.submitted;
   FrameStats stats;
   stats.frame = ++r.frames;

@@ -22,11 +22,11 @@
 
 #include "engine/io/png_image.h"
 #include "engine/lod/cell_key.h"
-#include "engine/render/clip_region.h"
 #include "engine/render/gpu_node_cache.h"
 #include "engine/render/node_selection.h"
 #include "engine/render/overlay_scene.h"
 #include "engine/render/segment_labels.h"
+#include "engine/view/clip_region.h"
 
 namespace plumb::gpu {
 class Device;
@@ -64,8 +64,8 @@ struct RenderSettings {
   // by more than this fraction of the depth plus 1 cm (scanner noise, polygons fitted to it).
   float overlay_depth_tolerance = 0.005f;
   // What is kept of the cloud (inactive: all of it); points cut away are neither drawn nor
-  // picked. Must pass checkClipRegion.
-  ClipRegion clip;
+  // picked. Must pass view::checkClipRegion.
+  view::ClipRegion clip;
 };
 
 enum class NodeLoading : std::uint8_t {

@@ -146,12 +146,60 @@ TEST(ProjectFile, RoundTripsEveryFieldBitForBit) {
   expectSame(readProjectFile(path), empty);
 }
 
+// The view's section (a slice, a turned box kept outside, a plane) comes back as it was; a
+// section the renderer could not take is refused with its place; a version 1 file (no section)
+// still reads.
+TEST(ProjectFile, KeepsTheViewsSection) {
+  plumb::test::TempDirectory directory;
+  Project project = test::sampleProject();
+  view::ClipSettings section;
+  section.slice = true;
+  section.slice_bottom_z = 1.15;
+  section.slice_thickness = 0.1;
+  section.box = view::ClipBox{{3.5, 2.5, 1.25}, {1.0 / 3.0, 2.0, 0.75}, 0.3};
+  section.keep_outside_box = true;
+  section.planes.push_back({{1.0, 2.0, 3.0}, Eigen::Vector3d(1.0, 2.0, 2.0).normalized()});
+  project.section = section;
+  const std::string path = directory.file("room.plumbproj");
+  writeProjectFile(project, path);
+  const Project back = readProjectFile(path);
+  ASSERT_TRUE(back.section.has_value());
+  EXPECT_TRUE(back.section->slice);
+  EXPECT_EQ(back.section->slice_bottom_z, 1.15);
+  EXPECT_EQ(back.section->slice_thickness, 0.1);
+  ASSERT_TRUE(back.section->box.has_value());
+  EXPECT_EQ(back.section->box->centre, section.box->centre);
+  EXPECT_EQ(back.section->box->half_size, section.box->half_size);
+  EXPECT_EQ(back.section->box->yaw_rad, 0.3);
+  EXPECT_TRUE(back.section->keep_outside_box);
+  ASSERT_EQ(back.section->planes.size(), 1u);
+  EXPECT_EQ(back.section->planes[0].normal, section.planes[0].normal);
+
+  std::string text = plumb::test::readFile(path);
+  text.replace(text.find("\"thickness\": 0.1"), 16, "\"thickness\": 0.0");
+  plumb::test::writeFile(path, text);
+  try {
+    readProjectFile(path);
+    ADD_FAILURE() << "a slice of no thickness was read";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("field 'section.slice.thickness': must be above 0"), std::string::npos)
+        << error.what();
+  }
+
+  writeProjectFile(test::sampleProject(), path);
+  text = plumb::test::readFile(path);
+  EXPECT_EQ(text.find("\"section\""), std::string::npos) << "no section, no field";
+  text.replace(text.find("\"version\": 2"), 12, "\"version\": 1");
+  plumb::test::writeFile(path, text);
+  EXPECT_FALSE(readProjectFile(path).section.has_value());
+}
+
 TEST(ProjectFile, IsReadableJsonWithFormatAndVersionFirst) {
   plumb::test::TempDirectory directory;
   const std::string path = directory.file("room.plumbproj");
   writeProjectFile(test::sampleProject(), path);
   const std::string text = plumb::test::readFile(path);
-  EXPECT_EQ(text.rfind("{\n  \"format\": \"plumb-project\",\n  \"version\": 1,\n", 0), 0u) << text.substr(0, 80);
+  EXPECT_EQ(text.rfind("{\n  \"format\": \"plumb-project\",\n  \"version\": 2,\n", 0), 0u) << text.substr(0, 80);
   EXPECT_NE(text.find("\"normal\": [1.0,0.0,0.0]"), std::string::npos) << "vectors on one line";
   const nlohmann::json json = nlohmann::json::parse(text);
   EXPECT_EQ(json["polygons"][2]["extrusion"][2], 0.8125);
@@ -206,8 +254,8 @@ TEST_F(ProjectFileErrors, FormatAndVersion) {
   expectError(errorFor([](nlohmann::json& j) { j["format"] = "plumb-camera"; }),
               {"field 'format'", "not a Plumb project file"});
   expectError(errorFor([](nlohmann::json& j) { j.erase("format"); }), {"field 'format': missing"});
-  expectError(errorFor([](nlohmann::json& j) { j["version"] = 2; }),
-              {"field 'version'", "written by a newer Plumb (version 2); this build reads up to 1"});
+  expectError(errorFor([](nlohmann::json& j) { j["version"] = 3; }),
+              {"field 'version'", "written by a newer Plumb (version 3); this build reads up to 2"});
   expectError(errorFor([](nlohmann::json& j) { j["version"] = 0; }), {"field 'version'", "whole number"});
 }
 

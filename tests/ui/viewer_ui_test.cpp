@@ -184,7 +184,8 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
 
 // A slice (plumb view --slice) keeps a band of the room: seen from above, a click on the
 // ceiling's place finds nothing to grow (ceiling and floor are cut away, so nothing is picked),
-// while a click on a wall inside the band grows the wall; Page Up steps the slice.
+// while a click on a wall inside the band grows the wall; Page Down steps the slice; the saved
+// project keeps it.
 TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
   const plumb::test::TempDirectory dir;
   const fs::path ply = dir.file("room.ply"), scene = dir.file("scene.json");
@@ -202,6 +203,9 @@ TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
       {{"click_world", json::array({2.0, 5.0, 1.1})}},  // the y = 5 m wall, beside the window
       {{"wait", "grower_idle"}, {"timeout_s", 300}},
       {{"screenshot", "slice.png"}},
+      {{"key_down", "LEFT_CONTROL"}},
+      {{"key", "S"}},  // the project keeps the section
+      {{"key_up", "LEFT_CONTROL"}},
   });
   std::string arguments = "'";
   arguments += ply.string();
@@ -214,6 +218,9 @@ TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
     const Eigen::Vector3d normal = vector3(segment.at("normal"));
     EXPECT_LT(std::abs(normal.z()), 0.1) << "a horizontal plane was grown: " << segment.dump();
   }
+  const json project = readJson(ply.string() + ".plumbproj");
+  EXPECT_NEAR(project.at("section").at("slice").at("bottom_z").get<double>(), 1.05, 1e-9);
+  EXPECT_NEAR(project.at("section").at("slice").at("thickness").get<double>(), 0.1, 1e-12);
 }
 
 }  // namespace

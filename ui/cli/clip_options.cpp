@@ -20,8 +20,8 @@ void addClipOptions(CLI::App& command, ClipArguments& arguments) {
                      "Keep a horizontal slice: the points from height Z up to Z + THICKNESS (metres): Z,THICKNESS");
 }
 
-render::ClipSettings clipSettingsOf(const ClipArguments& arguments) {
-  render::ClipSettings region;
+view::ClipSettings clipSettingsOf(const ClipArguments& arguments) {
+  view::ClipSettings region;
   if (!arguments.slice.empty()) {
     const std::vector<double> v = parseNumbers(arguments.slice, 2, 2, "--slice", "1.0,0.1");
     if (!(v[1] > 0.0)) throw Error("--slice: the thickness must be above 0; got " + arguments.slice);
@@ -33,7 +33,7 @@ render::ClipSettings clipSettingsOf(const ClipArguments& arguments) {
     const std::vector<double> v = parseNumbers(arguments.box, 6, 7, "--clip-box", "2,3,1.5,4,5,3,30");
     const Eigen::Vector3d size(v[3], v[4], v[5]);
     if (!(size.minCoeff() > 0.0)) throw Error("--clip-box: each size must be above 0; got " + arguments.box);
-    region.box = render::ClipBox{{v[0], v[1], v[2]}, 0.5 * size, v.size() == 7 ? v[6] * M_PI / 180.0 : 0.0};
+    region.box = view::ClipBox{{v[0], v[1], v[2]}, 0.5 * size, v.size() == 7 ? v[6] * M_PI / 180.0 : 0.0};
   } else if (arguments.outside) {
     throw Error("--clip-outside needs a --clip-box");
   }
@@ -44,7 +44,7 @@ render::ClipSettings clipSettingsOf(const ClipArguments& arguments) {
     if (!(normal.norm() > 0.0)) throw Error("--clip-plane: the normal must not be 0; got " + text);
     region.planes.push_back({{v[0], v[1], v[2]}, normal.normalized()});
   }
-  render::checkClipRegion(region.region(), "clipping");
+  view::checkClipRegion(region.region(), "clipping");
   return region;
 }
 

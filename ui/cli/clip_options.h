@@ -1,11 +1,11 @@
 #pragma once
 // The clipping options of the commands that draw a cloud (plumb render, plumb view): a box, its
-// inside or outside kept, clip planes and a horizontal slice, as render::ClipSettings.
+// inside or outside kept, clip planes and a horizontal slice, as view::ClipSettings.
 
 #include <string>
 #include <vector>
 
-#include "engine/render/clip_region.h"
+#include "engine/view/clip_region.h"
 
 namespace CLI {
 class App;
@@ -23,6 +23,6 @@ struct ClipArguments {
 void addClipOptions(CLI::App& command, ClipArguments& arguments);
 
 // Throws plumb::Error naming the option for a malformed or impossible value.
-render::ClipSettings clipSettingsOf(const ClipArguments& arguments);
+view::ClipSettings clipSettingsOf(const ClipArguments& arguments);
 
 }  // namespace plumb::cli

@@ -102,7 +102,7 @@ Command addRenderCommand(CLI::App& plumb) {
       size = {camera.viewport_width_px, camera.viewport_height_px};
     }
     if (!options->size.empty()) size = parseSize(options->size);
-    const render::ClipRegion clip = clipSettingsOf(options->clip).region();
+    const view::ClipRegion clip = clipSettingsOf(options->clip).region();
 
     const CloudInput cloud(options->cloud, "render");
     const lod::OctreeHeader& header = cloud.octree()->header();

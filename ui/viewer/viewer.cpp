@@ -130,6 +130,7 @@ void Viewer::openProject() {
         cloud.is_absolute() ? cloud.string() : (std::filesystem::path(project_.path()).parent_path() / cloud).string();
   }
   if (!options_.camera && project->camera) options_.camera = project->camera;
+  if (!options_.clip.active() && project->section) clip_ = *project->section;
   loadProject(*project, scene_);
   // Recovered work is not in the project file yet.
   project_.markSaved(project_.recovered() ? ~std::uint64_t{0} : documentVersion(scene_.registry()));
@@ -143,7 +144,9 @@ cad::Project Viewer::currentProject() const {
   std::optional<view::Camera> camera;
   camera = cloud_ ? std::optional(cloud_->navigator->camera()) : options_.camera;
   if (camera && view::findCameraProblem(*camera)) camera.reset();  // a project without a view beats none saved
-  return projectOf(scene_.registry(), cloud, camera);
+  cad::Project project = projectOf(scene_.registry(), cloud, camera);
+  if (clip_.active()) project.section = clip_;
+  return project;
 }
 
 void Viewer::saveProject() {

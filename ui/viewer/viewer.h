@@ -155,7 +155,7 @@ class Viewer {
   bool quit_ = false;
 
   render::RenderSettings settings_;
-  render::ClipSettings clip_;     // the View panel's section: each frame's settings_.clip
+  view::ClipSettings clip_;     // the View panel's section: each frame's settings_.clip
   float render_scale_ = 1.0f;     // of a still view
   double moving_scale_ = 1.0;     // of a moving view, adapted to the frame time
   bool adaptive_quality_ = true;  // lower resolution and budget while moving

@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "engine/render/clip_region.h"
+#include "engine/view/clip_region.h"
 #include "engine/view/camera.h"
 
 namespace plumb::viewer {
@@ -41,7 +41,7 @@ struct ViewerOptions {
   // While the view moves, render fewer pixels and points to keep 30 frames per second.
   bool adaptive_quality = true;
   // What the view keeps of the cloud at first (--slice, --clip-box, ...); the View panel changes it.
-  render::ClipSettings clip;
+  view::ClipSettings clip;
 };
 
 // Runs the viewer until its window closes or its script ends. Returns the exit status: non-zero

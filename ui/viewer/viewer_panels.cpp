@@ -403,7 +403,7 @@ void Viewer::drawSectionControls() {
   if (ImGui::Checkbox("Clip box", &box)) {
     // A new box holds the whole cloud: shrink it from there.
     if (box) {
-      render::ClipBox whole;
+      view::ClipBox whole;
       for (std::size_t a = 0; a < 3; ++a) {
         whole.centre[static_cast<Eigen::Index>(a)] = 0.5 * (bounds.min[a] + bounds.max[a]);
         whole.half_size[static_cast<Eigen::Index>(a)] = std::max(0.5 * (bounds.max[a] - bounds.min[a]), 0.05);
@@ -417,7 +417,7 @@ void Viewer::drawSectionControls() {
   if (clip_.box) {
     ImGui::SameLine();
     ImGui::Checkbox("Keep outside", &clip_.keep_outside_box);
-    render::ClipBox& b = *clip_.box;
+    view::ClipBox& b = *clip_.box;
     ImGui::DragScalarN("Centre", ImGuiDataType_Double, b.centre.data(), 3, 0.02f, nullptr, nullptr, "%.2f");
     Eigen::Vector3d size = 2.0 * b.half_size;
     const double smallest = 0.01, largest = 1e6;

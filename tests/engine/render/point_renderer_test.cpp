@@ -385,7 +385,7 @@ TEST_F(PointRendererTest, AClipBoxAndASliceKeepOnlyTheirPoints) {
   const FrameStats whole = renderer.renderComplete(camera, flat());
 
   RenderSettings settings = flat();
-  settings.clip.box = ClipBox{offset + Eigen::Vector3d(-2.0, 5.0, 1.5), Eigen::Vector3d(1.5, 0.5, 1.0), 0.0};
+  settings.clip.box = view::ClipBox{offset + Eigen::Vector3d(-2.0, 5.0, 1.5), Eigen::Vector3d(1.5, 0.5, 1.0), 0.0};
   const FrameStats boxed = renderer.renderComplete(camera, settings);
   io::RgbaImage image = renderer.readColour();
   keepForInspection(image, "clip_box");
@@ -407,7 +407,7 @@ TEST_F(PointRendererTest, AClipBoxAndASliceKeepOnlyTheirPoints) {
   EXPECT_TRUE(near(pixel(image, 2.0, 1.5), 0xFF00FF00, 1));
   EXPECT_TRUE(near(pixel(image, 0.0, 1.5), 0xFFFF0000, 1));
 
-  settings.clip = horizontalSlice(offset.z() + 0.3, 0.4);
+  settings.clip = view::horizontalSlice(offset.z() + 0.3, 0.4);
   const FrameStats sliced = renderer.renderComplete(camera, settings);
   image = renderer.readColour();
   keepForInspection(image, "clip_slice");

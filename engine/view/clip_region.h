@@ -14,9 +14,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/lod/cube.h"
-
-namespace plumb::render {
+namespace plumb::view {
 
 struct ClipBox {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -49,14 +47,16 @@ struct ClipRegion {
   std::vector<HalfSpace> planeHalfSpaces() const;
 
   bool keeps(const Eigen::Vector3d& position) const;
-  // Whether no point of `cell` can be kept: the node may be skipped. Conservative: false when
-  // unsure.
-  bool cutsAway(const lod::Box3& cell) const;
+  // Whether no point of the axis-aligned box from `min` to `max` can be kept: an octree node
+  // there may be skipped. Conservative: false when unsure.
+  bool cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const;
 };
 
 // A region as a user states it (plumb render's and plumb view's options, the viewer's View
 // panel): a horizontal slice, a box, planes; region() composes them.
 struct ClipSettings {
+  bool active() const { return slice || box.has_value() || !planes.empty(); }
+
   bool slice = false;
   double slice_bottom_z = 0.0, slice_thickness = 0.1;
   std::optional<ClipBox> box;
@@ -76,4 +76,4 @@ ClipRegion horizontalSlice(double bottom_z, double thickness);
 // thickness / 2.
 ClipRegion slabAbout(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double thickness);
 
-}  // namespace plumb::render
+}  // namespace plumb::view

@@ -1,7 +1,7 @@
 // The clip region on the host: what keeps() keeps, and cutsAway() never skipping a cell that
 // holds a kept point (node selection relies on it).
 
-#include "engine/render/clip_region.h"
+#include "engine/view/clip_region.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include "engine/core/error.h"
 
-namespace plumb::render {
+namespace plumb::view {
 namespace {
 
 TEST(ClipRegion, ABoxTurnedAboutTheVerticalKeepsItsInsideOrOutside) {
@@ -51,8 +51,7 @@ TEST(ClipRegion, ACellCutAwayHoldsNoKeptPoint) {
     }
     const Eigen::Vector3d low(coordinate(random), coordinate(random), coordinate(random));
     const double size = 0.1 + 2.0 * unit(random);
-    const lod::Box3 cell{{low.x(), low.y(), low.z()}, {low.x() + size, low.y() + size, low.z() + size}};
-    if (!region.cutsAway(cell)) continue;
+    if (!region.cutsAway(low, low + Eigen::Vector3d::Constant(size))) continue;
     ++cut;
     for (int i = 0; i < 200; ++i) {
       const Eigen::Vector3d p = low + size * Eigen::Vector3d(unit(random), unit(random), unit(random));
@@ -77,4 +76,4 @@ TEST(ClipRegion, RegionsTheRendererCannotTakeAreRefused) {
 }
 
 }  // namespace
-}  // namespace plumb::render
+}  // namespace plumb::view

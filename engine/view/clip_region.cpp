@@ -1,11 +1,11 @@
-#include "engine/render/clip_region.h"
+#include "engine/view/clip_region.h"
 
 #include <cmath>
 #include <string>
 
 #include "engine/core/error.h"
 
-namespace plumb::render {
+namespace plumb::view {
 namespace {
 
 HalfSpace halfSpace(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
@@ -19,13 +19,13 @@ bool inside(const std::vector<HalfSpace>& spaces, const Eigen::Vector3d& p) {
   return true;
 }
 
-// The largest and smallest value of n . x + d over the cell's corners.
-std::pair<double, double> range(const HalfSpace& h, const lod::Box3& cell) {
+// The smallest and largest value of n . x + d over the corners of the box from `min` to `max`.
+std::pair<double, double> range(const HalfSpace& h, const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
   double low = h[3], high = h[3];
-  for (std::size_t a = 0; a < 3; ++a) {
-    const double n = h[static_cast<Eigen::Index>(a)];
-    low += n * (n >= 0.0 ? cell.min[a] : cell.max[a]);
-    high += n * (n >= 0.0 ? cell.max[a] : cell.min[a]);
+  for (Eigen::Index a = 0; a < 3; ++a) {
+    const double n = h[a];
+    low += n * (n >= 0.0 ? min[a] : max[a]);
+    high += n * (n >= 0.0 ? max[a] : min[a]);
   }
   return {low, high};
 }
@@ -62,14 +62,14 @@ bool ClipRegion::keeps(const Eigen::Vector3d& position) const {
   return inside(boxFaces(), position) != keep_outside_box;
 }
 
-bool ClipRegion::cutsAway(const lod::Box3& cell) const {
+bool ClipRegion::cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const {
   for (const HalfSpace& h : planeHalfSpaces()) {
-    if (range(h, cell).second < 0.0) return true;
+    if (range(h, min, max).second < 0.0) return true;
   }
   if (!box) return false;
   bool wholly_inside = true;
   for (const HalfSpace& h : boxFaces()) {
-    const auto [low, high] = range(h, cell);
+    const auto [low, high] = range(h, min, max);
     if (high < 0.0 && !keep_outside_box) return true;  // wholly outside one face
     if (low < 0.0) wholly_inside = false;
   }
@@ -121,4 +121,4 @@ ClipRegion slabAbout(const Eigen::Vector3d& point, const Eigen::Vector3d& normal
   return region;
 }
 
-}  // namespace plumb::render
+}  // namespace plumb::view
