@@ -3,6 +3,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -61,6 +62,21 @@ void Navigator::setHome(const view::Camera& camera) {
 
 void Navigator::showPreset(view::ViewPreset preset) {
   set(view::presetCamera(preset, bounds_min_, bounds_max_, camera_.viewport_width_px, camera_.viewport_height_px));
+}
+
+void Navigator::showElevation(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double height_m) {
+  Eigen::Vector3d n = normal.normalized();
+  if (n.dot(camera_.position - point) < 0.0) n = -n;
+  view::Camera next = camera_;
+  next.projection = view::Projection::kOrthographic;
+  next.target = point;
+  next.position = point + n * std::max((camera_.position - point).norm(), 1.0);
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ() - n.z() * n;
+  if (up.norm() < 0.1) up = camera_.up - camera_.up.dot(n) * n;  // a level plane: keep the view's turn
+  if (up.norm() < 1e-6) up = n.unitOrthogonal();
+  next.up = up.normalized();
+  next.ortho_height_m = height_m;
+  set(next);
 }
 
 void Navigator::home() {

@@ -47,6 +47,10 @@ class Navigator {
   // Makes `camera` (viewport aside) the home view and shows it.
   void setHome(const view::Camera& camera);
   void showPreset(view::ViewPreset preset);
+  // The elevation of a plane (a facade, a wall): orthographic, looking straight at the plane
+  // through `point` from the side the view is on, `height_m` high, the vertical up (for a level
+  // plane, the view's up: its plan).
+  void showElevation(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double height_m);
   void home();
   void toggleOrthographic();
   void toggleFly();

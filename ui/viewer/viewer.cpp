@@ -664,6 +664,26 @@ void Viewer::cornerOfSelected() {
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.message = message; });
 }
 
+void Viewer::showElevationOfSelected() {
+  const Segment* segment = nullptr;
+  std::size_t segments = 0;
+  for (const ecs::Entity entity : scene_.selected()) {
+    if (const Segment* found = scene_.registry().tryGet<Segment>(entity)) {
+      segment = found;
+      ++segments;
+    }
+  }
+  if (!cloud_ || segments != 1) {
+    scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) {
+      t.drawing.message = "elevation: select one segment (" + std::to_string(segments) + " selected)";
+    });
+    return;
+  }
+  // The view spans the segment, a little more (its outline's area gives its size).
+  const double height_m = std::max(1.0, 1.5 * std::sqrt(std::max(segment->area_m2, 0.0)));
+  cloud_->navigator->showElevation(segment->plane.centroid, segment->plane.normal, height_m);
+}
+
 void Viewer::groupSelected() {
   const ecs::Entity group = scene_.groupSelected();
   const std::string message = group == ecs::kNullEntity ? "nothing selected to group"

@@ -123,6 +123,7 @@ class Viewer {
   void drawViewPanel();
   void drawScanLegend();
   void drawSectionControls();
+  void showElevationOfSelected();
   void drawProjectPanel();
   void drawStatusBar();
 

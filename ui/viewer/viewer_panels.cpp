@@ -335,6 +335,9 @@ void Viewer::drawViewPanel() {
     ImGui::SameLine();
     if (ImGui::Button("Home")) navigator.home();
     tooltip("The first view (H)");
+    ImGui::SameLine();
+    if (ImGui::Button("Elevation")) showElevationOfSelected();
+    tooltip("Orthographic, straight at the selected segment's plane: a facade's elevation, a floor's plan");
     bool ortho = navigator.camera().projection == view::Projection::kOrthographic;
     if (ImGui::Checkbox("Orthographic", &ortho)) navigator.toggleOrthographic();
     tooltip("Perspective or orthographic (O)");

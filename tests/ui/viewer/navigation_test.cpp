@@ -55,6 +55,26 @@ TEST(Navigator, OpensOnAnIsoViewOfTheBounds) {
   EXPECT_GT(std::abs(view.y()), 0.3);
 }
 
+// An elevation looks straight at its plane from the side the view is on, the vertical up; a
+// level plane keeps the view's turn.
+TEST(Navigator, AnElevationLooksStraightAtThePlaneFromTheViewsSide) {
+  Navigator navigator(kMin, kMax, 640, 360);
+  const Eigen::Vector3d wall_point(3.0, 0.0, 1.2);
+  const bool in_front = (navigator.camera().position - wall_point).y() < 0.0;
+  navigator.showElevation(wall_point, Eigen::Vector3d(0.0, 1.0, 0.0), 4.0);
+  const view::Camera& camera = navigator.camera();
+  EXPECT_EQ(camera.projection, view::Projection::kOrthographic);
+  EXPECT_DOUBLE_EQ(camera.ortho_height_m, 4.0);
+  EXPECT_LT((camera.target - wall_point).norm(), 1e-12);
+  EXPECT_LT((view::viewDirection(camera) - Eigen::Vector3d(0.0, in_front ? 1.0 : -1.0, 0.0)).norm(), 1e-9);
+  EXPECT_LT((camera.up - Eigen::Vector3d::UnitZ()).norm(), 1e-9);
+  EXPECT_FALSE(view::findCameraProblem(camera));
+
+  navigator.showElevation({2.0, 2.0, 0.0}, Eigen::Vector3d::UnitZ(), 6.0);  // the floor: its plan
+  EXPECT_LT((view::viewDirection(navigator.camera()) - Eigen::Vector3d(0.0, 0.0, -1.0)).norm(), 1e-9);
+  EXPECT_FALSE(view::findCameraProblem(navigator.camera()));
+}
+
 TEST(Navigator, APressAndReleaseInPlaceIsAClickForTheTool) {
   Navigator navigator(kMin, kMax, 640, 360);
   const view::Camera before = navigator.camera();
