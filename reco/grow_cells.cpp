@@ -16,6 +16,7 @@ CellState& Grower::loaded(const CellKey& key) {
     const std::vector<lod::CellPoint> points = cell_points_.pointsInCell(key, key.level + point_levels_);
     for (const lod::CellPoint& p : points) {
       const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
+      if (options_.keep && !options_.keep(position)) continue;  // cut away by the view's section
       state.points.push_back(position);
       state.refs.push_back(p.ref);
       state.assigned.push_back(membership_.flag(p.ref));

@@ -63,6 +63,9 @@ struct GrowOptions {
   std::uint32_t refine_rounds = 4;
   // Fill SegmentSnapshot::members in the final result (the octree points of each segment).
   bool collect_members = false;
+  // Only the points this keeps take part (a view's section: grows limited to what it shows);
+  // empty: every point. Called once for each point a grow loads, from the grow's thread.
+  std::function<bool(const Eigen::Vector3d&)> keep;
   // Cancels the grow between two cells when it becomes true (a newer click, say). May be null.
   const std::atomic<bool>* cancel = nullptr;
 };

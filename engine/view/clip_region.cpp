@@ -12,13 +12,6 @@ HalfSpace halfSpace(const Eigen::Vector3d& point, const Eigen::Vector3d& normal)
   return {normal.x(), normal.y(), normal.z(), -normal.dot(point)};
 }
 
-bool inside(const std::vector<HalfSpace>& spaces, const Eigen::Vector3d& p) {
-  for (const HalfSpace& h : spaces) {
-    if (h.head<3>().dot(p) + h[3] < 0.0) return false;
-  }
-  return true;
-}
-
 // The smallest and largest value of n . x + d over the corners of the box from `min` to `max`.
 std::pair<double, double> range(const HalfSpace& h, const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
   double low = h[3], high = h[3];
@@ -56,10 +49,18 @@ std::vector<HalfSpace> ClipRegion::planeHalfSpaces() const {
   return spaces;
 }
 
+// Without allocating: grows call it for every point they load.
 bool ClipRegion::keeps(const Eigen::Vector3d& position) const {
-  if (!inside(planeHalfSpaces(), position)) return false;
+  for (const ClipPlane& plane : planes) {
+    if ((position - plane.point).dot(plane.normal) < 0.0) return false;
+  }
   if (!box) return true;
-  return inside(boxFaces(), position) != keep_outside_box;
+  // The position in the box's frame: turned back about +z around the centre.
+  const Eigen::Vector3d d = position - box->centre;
+  const double c = std::cos(box->yaw_rad), s = std::sin(box->yaw_rad);
+  const Eigen::Vector3d local(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());
+  const bool inside = (local.cwiseAbs() - box->half_size).maxCoeff() <= 0.0;
+  return inside != keep_outside_box;
 }
 
 bool ClipRegion::cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const {

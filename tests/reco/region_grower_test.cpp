@@ -145,6 +145,29 @@ TEST(RegionGrower, TwoPlanesAtRightAnglesGrowApart) {
   EXPECT_LE(result.mean_neighbour_distance, parameters.search_radius_m);
 }
 
+// A grow limited to a view's section (GrowOptions::keep): the same click keeps to the points
+// the section keeps. With the wall's lower 1.5 m sliced away, only the floor grows, and the wall
+// above keeps none of its points; without the limit both grow.
+TEST(RegionGrower, AGrowLimitedToTheSectionTakesOnlyItsPoints) {
+  test::TempDirectory dir;
+  const std::vector<Patch> patches{{kUtm, {4, 0, 0}, {0, 4, 0}}, {kUtm, {0, 4, 0}, {0, 0, 2.5}}};
+  const auto octree = buildPatches(dir, patches, 120'000);
+  lod::NodeCache cache(octree, 256 << 20);
+  const GrowParameters parameters =
+      parametersForDensity(kUtm + Eigen::Vector3d(0.3, 2.0, 0.3), 1.0 / std::pow(0.03, 3), 0.5);
+  GrowOptions limited;
+  const double cut_z = kUtm.z() + 0.1;  // the floor and the wall's foot only
+  limited.keep = [cut_z](const Eigen::Vector3d& p) { return p.z() < cut_z; };
+  const GrowSnapshot result = growRegions(cache, parameters, limited, nullptr);
+  ASSERT_TRUE(result.converged);
+  for (const SegmentSnapshot& segment : result.segments) {
+    EXPECT_LT(angleDeg(segment.plane.normal, Eigen::Vector3d::UnitZ()), 1.0)
+        << "only the floor: the wall's points above " << cut_z - kUtm.z() << " m are cut away";
+  }
+  ASSERT_EQ(result.segments.size(), 1u);
+  EXPECT_EQ(growRegions(cache, parameters, {}, nullptr).segments.size(), 2u);
+}
+
 // Three walls of a corner, 1.5 m square, 1 mm noise, 100,000 points each (4.7 mm apart); a click
 // 0.1 m inside the corner at full detail (the deepest level's spacing). The seed sphere holds
 // tens of thousands of points there: the planes are found on a sample of it at r_s / 16 and

@@ -375,6 +375,29 @@ TEST_F(Cli, RenderRejectsBadArgumentsAndWritesNothing) {
   EXPECT_EQ(entries(), 1u) << "room.ply only";
 }
 
+// A grow keeps to the section: in the room's corner, with everything below 0.2 m sliced away,
+// the floor does not grow, the two walls do.
+TEST_F(Cli, GrowKeepsToTheSection) {
+  ASSERT_EQ(plumb("simulate --points 300000 --noise-mm 2 -o " + path("room.ply")).exit_code, 0);
+  auto grow = [&](const std::string& arguments) {
+    const Outcome run = plumb("grow " + path("room.ply") + " --seed 0.3,0.3,0.3 --detail medium " + arguments +
+                              " --json " + path("grow.json"));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(plumb::test::readFile(path("grow.json"))).at("segments");
+  };
+  auto levels = [](const nlohmann::json& segments) {
+    int level = 0;
+    for (const auto& segment : segments)
+      level += std::abs(segment.at("plane").at("normal")[2].get<double>()) > 0.9 ? 1 : 0;
+    return level;
+  };
+  const nlohmann::json whole = grow("");
+  EXPECT_EQ(levels(whole), 1) << "the floor grows without a section";
+  const nlohmann::json sliced = grow("--slice 0.2,3");
+  EXPECT_EQ(levels(sliced), 0) << sliced.dump();
+  EXPECT_EQ(sliced.size(), 2u) << "the two walls";
+}
+
 // A slice at window height seen from above is the room's plan: the walls' thin lines, no floor
 // or ceiling; a clip box's outside leaves the room's shell without its middle.
 TEST_F(Cli, RenderDrawsOnlyWhatTheClippingKeeps) {

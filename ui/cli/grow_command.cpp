@@ -15,6 +15,7 @@
 #include "reco/data_at_click.h"
 #include "reco/region_grower.h"
 #include "ui/cli/arguments.h"
+#include "ui/cli/clip_options.h"
 #include "ui/cli/cloud_input.h"
 #include "ui/cli/command.h"
 #include "ui/cli/grow_output.h"
@@ -32,6 +33,7 @@ struct GrowOptions {
   double plane_threshold = 0.02;
   std::string json;
   std::string gltf;
+  ClipArguments clip;  // grows limited to a section
 };
 
 }  // namespace
@@ -64,9 +66,11 @@ Command addGrowCommand(CLI::App& plumb) {
   sub->add_option("--json", options->json, "Write the result as JSON (docs/grow-json.md)");
   sub->add_option("--gltf", options->gltf,
                   "Write the segments' polygons, edges and corners as a glTF 2.0 binary (.glb)");
+  addClipOptions(*sub, options->clip);  // the grow takes only the points they keep
 
   auto run = [options, tp_option]() -> int {
     const Eigen::Vector3d seed = parseVector3(options->seed, "--seed");
+    const view::ClipRegion section = clipSettingsOf(options->clip).region();
     // Read the camera before any work: a bad file is reported at once.
     reco::ViewAtClick view = reco::viewFromDistance(seed, options->view_distance);
     if (!options->camera.empty()) {
@@ -99,9 +103,12 @@ Command addGrowCommand(CLI::App& plumb) {
     }
 
     double first_progress_ms = -1.0;
-    const reco::GrowSnapshot result = reco::growRegions(cache, parameters, {}, [&](const reco::GrowSnapshot& s) {
-      if (first_progress_ms < 0.0) first_progress_ms = s.elapsed_ms;
-    });
+    reco::GrowOptions grow_options;
+    if (section.active()) grow_options.keep = [&section](const Eigen::Vector3d& p) { return section.keeps(p); };
+    const reco::GrowSnapshot result =
+        reco::growRegions(cache, parameters, grow_options, [&](const reco::GrowSnapshot& s) {
+          if (first_progress_ms < 0.0) first_progress_ms = s.elapsed_ms;
+        });
 
     std::printf("grew %zu segment%s around %.3f %.3f %.3f at level %u (spacing %.4f m)\n", result.segments.size(),
                 result.segments.size() == 1 ? "" : "s", seed.x(), seed.y(), seed.z(), result.level,

@@ -774,7 +774,11 @@ void Viewer::startGrow(const Eigen::Vector3d& picked) {
   if (!parameters) return;
   // Cancel first: the old grow's live outline goes now, and its late snapshots are dropped.
   scene_.dropLive();
-  cloud_->grow->start(*parameters);
+  reco::GrowOptions options;
+  if (grow_panel_.inside_section && clip_.active()) {
+    options.keep = [region = clip_.region()](const Eigen::Vector3d& p) { return region.keeps(p); };
+  }
+  cloud_->grow->start(*parameters, std::move(options));
   grow_panel_.last = parameters;
   grow_panel_.last_update.reset();
 }

@@ -69,6 +69,7 @@ struct GrowPanel {
   std::optional<reco::GrowParameters> last;
   std::optional<reco::DataAtClick> last_data;  // the cloud at the last click
   std::optional<GrowUpdate> last_update;       // its newest snapshot's statistics
+  bool inside_section = false;                 // grows take only the points the section keeps
 };
 
 class Viewer {

@@ -183,6 +183,10 @@ void Viewer::drawGrowPanel() {
       "From the view: nearer views grow finer, down to every point where a pixel is as fine as the points are "
       "apart. With the paper's densities: never finer than 4.6 cm, fast on dense scans. The others override the "
       "density the view implies.");
+  ImGui::BeginDisabled(!clip_.active());
+  ImGui::Checkbox("Inside the section only", &grow_panel_.inside_section);
+  ImGui::EndDisabled();
+  tooltip("Grows take only the points the slice and the clip box keep (the View panel's section)");
   // Live: what a click at the view's centre would use now (the target's depth, the data as the
   // last click measured it); then the last click's.
   if (cloud_) {
