@@ -87,14 +87,18 @@ constexpr double kAreaTolerance = 0.03;
 //   +---------- y
 //  /   floor: z = 0, x in [0, 4], y in [0, 4]
 // x    seed near the edge where they meet
+const std::vector<Patch> kFloorAndWall{{kUtm, {4, 0, 0}, {0, 4, 0}}, {kUtm, {0, 4, 0}, {0, 0, 2.5}}};
+// The click near the edge where they meet, for a 3 cm spacing.
+GrowParameters clickNearTheFloorsEdge() {
+  return parametersForDensity(kUtm + Eigen::Vector3d(0.3, 2.0, 0.3), 1.0 / std::pow(0.03, 3), 0.5);
+}
+
 TEST(RegionGrower, TwoPlanesAtRightAnglesGrowApart) {
   test::TempDirectory dir;
-  const std::vector<Patch> patches{{kUtm, {4, 0, 0}, {0, 4, 0}}, {kUtm, {0, 4, 0}, {0, 0, 2.5}}};
-  const auto octree = buildPatches(dir, patches, 120'000);
+  const auto octree = buildPatches(dir, kFloorAndWall, 120'000);
   lod::NodeCache cache(octree, 256 << 20);
 
-  const GrowParameters parameters =
-      parametersForDensity(kUtm + Eigen::Vector3d(0.3, 2.0, 0.3), 1.0 / std::pow(0.03, 3), 0.5);
+  const GrowParameters parameters = clickNearTheFloorsEdge();
   std::vector<GrowSnapshot> snapshots;
   const GrowSnapshot result =
       growRegions(cache, parameters, {}, [&](const GrowSnapshot& s) { snapshots.push_back(s); });
@@ -145,16 +149,14 @@ TEST(RegionGrower, TwoPlanesAtRightAnglesGrowApart) {
   EXPECT_LE(result.mean_neighbour_distance, parameters.search_radius_m);
 }
 
-// A grow limited to a view's section (GrowOptions::keep): the same click keeps to the points
-// the section keeps. With the wall's lower 1.5 m sliced away, only the floor grows, and the wall
-// above keeps none of its points; without the limit both grow.
+// A grow limited to a view's section (GrowOptions::keep) keeps to the points the section keeps:
+// the floor and wall above with everything higher than 0.1 m cut away leave the wall only its
+// foot, and the click near their edge grows the floor alone; without the limit both grow.
 TEST(RegionGrower, AGrowLimitedToTheSectionTakesOnlyItsPoints) {
   test::TempDirectory dir;
-  const std::vector<Patch> patches{{kUtm, {4, 0, 0}, {0, 4, 0}}, {kUtm, {0, 4, 0}, {0, 0, 2.5}}};
-  const auto octree = buildPatches(dir, patches, 120'000);
+  const auto octree = buildPatches(dir, kFloorAndWall, 120'000);
   lod::NodeCache cache(octree, 256 << 20);
-  const GrowParameters parameters =
-      parametersForDensity(kUtm + Eigen::Vector3d(0.3, 2.0, 0.3), 1.0 / std::pow(0.03, 3), 0.5);
+  const GrowParameters parameters = clickNearTheFloorsEdge();
   GrowOptions limited;
   const double cut_z = kUtm.z() + 0.1;  // the floor and the wall's foot only
   limited.keep = [cut_z](const Eigen::Vector3d& p) { return p.z() < cut_z; };
