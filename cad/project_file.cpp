@@ -1,5 +1,6 @@
 #include "cad/project_file.h"
 
+#include <cmath>
 #include <string_view>
 
 #include "cad/json_place.h"
@@ -212,6 +213,11 @@ OrderedJson itemJson(ItemId id, const std::string& name, ItemId group) {
 OrderedJson sectionJson(const view::ClipSettings& section) {
   OrderedJson json;
   if (section.slice) json["slice"] = {{"bottom_z", section.slice_bottom_z}, {"thickness", section.slice_thickness}};
+  if (section.slab) {
+    json["slab"] = {{"point", vector(section.slab->point)},
+                    {"normal", vector(section.slab->normal)},
+                    {"thickness", section.slab->thickness}};
+  }
   if (section.box) {
     json["box"] = {{"centre", vector(section.box->centre)},
                    {"size", vector(Eigen::Vector3d(2.0 * section.box->half_size))},
@@ -226,7 +232,7 @@ OrderedJson sectionJson(const view::ClipSettings& section) {
 }
 
 view::ClipSettings readSection(const JsonPlace& at) {
-  at.expectObject({"slice", "box", "planes"});
+  at.expectObject({"slice", "slab", "box", "planes"});
   view::ClipSettings section;
   if (const auto slice = at.optionalField("slice")) {
     slice->expectObject({"bottom_z", "thickness"});
@@ -234,6 +240,14 @@ view::ClipSettings readSection(const JsonPlace& at) {
     section.slice_bottom_z = slice->field("bottom_z").number();
     section.slice_thickness = slice->field("thickness").number();
     if (!(section.slice_thickness > 0.0)) throw slice->field("thickness").error("must be above 0");
+  }
+  if (const auto slab = at.optionalField("slab")) {
+    slab->expectObject({"point", "normal", "thickness"});
+    const Eigen::Vector3d normal = slab->field("normal").vector3();
+    if (std::abs(normal.norm() - 1.0) > 1e-6) throw slab->field("normal").error("must be a unit vector");
+    const double thickness = slab->field("thickness").number();
+    if (!(thickness > 0.0)) throw slab->field("thickness").error("must be above 0");
+    section.slab = view::ClipSlab{slab->field("point").vector3(), normal, thickness};
   }
   if (const auto box = at.optionalField("box")) {
     box->expectObject({"centre", "size", "turn_rad", "keep_outside"});

@@ -101,6 +101,10 @@ void checkClipRegion(const ClipRegion& region, const char* what) {
 
 ClipRegion ClipSettings::region() const {
   ClipRegion region = slice ? horizontalSlice(slice_bottom_z, slice_thickness) : ClipRegion{};
+  if (slab) {
+    const ClipRegion about = slabAbout(slab->point, slab->normal, slab->thickness);
+    region.planes.insert(region.planes.end(), about.planes.begin(), about.planes.end());
+  }
   region.box = box;
   region.keep_outside_box = keep_outside_box;
   region.planes.insert(region.planes.end(), planes.begin(), planes.end());

@@ -52,13 +52,22 @@ struct ClipRegion {
   bool cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const;
 };
 
+// A slab of `thickness` centred on the plane through `point` with `normal` (unit): an elevation's
+// section of a facade or a wall.
+struct ClipSlab {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  double thickness = 0.2;
+};
+
 // A region as a user states it (plumb render's and plumb view's options, the viewer's View
-// panel): a horizontal slice, a box, planes; region() composes them.
+// panel): a horizontal slice, a slab about a plane, a box, planes; region() composes them.
 struct ClipSettings {
-  bool active() const { return slice || box.has_value() || !planes.empty(); }
+  bool active() const { return slice || slab.has_value() || box.has_value() || !planes.empty(); }
 
   bool slice = false;
   double slice_bottom_z = 0.0, slice_thickness = 0.1;
+  std::optional<ClipSlab> slab;
   std::optional<ClipBox> box;
   bool keep_outside_box = false;
   std::vector<ClipPlane> planes;

@@ -146,7 +146,7 @@ TEST(ProjectFile, RoundTripsEveryFieldBitForBit) {
   expectSame(readProjectFile(path), empty);
 }
 
-// The view's section (a slice, a turned box kept outside, a plane) comes back as it was; a
+// The view's section (a slice, a slab, a turned box kept outside, a plane) comes back as it was; a
 // section the renderer could not take is refused with its place; a version 1 file (no section)
 // still reads.
 TEST(ProjectFile, KeepsTheViewsSection) {
@@ -156,6 +156,7 @@ TEST(ProjectFile, KeepsTheViewsSection) {
   section.slice = true;
   section.slice_bottom_z = 1.15;
   section.slice_thickness = 0.1;
+  section.slab = view::ClipSlab{{0.5, 5.0, 1.0}, {0.0, -1.0, 0.0}, 0.25};
   section.box = view::ClipBox{{3.5, 2.5, 1.25}, {1.0 / 3.0, 2.0, 0.75}, 0.3};
   section.keep_outside_box = true;
   section.planes.push_back({{1.0, 2.0, 3.0}, Eigen::Vector3d(1.0, 2.0, 2.0).normalized()});
@@ -167,6 +168,10 @@ TEST(ProjectFile, KeepsTheViewsSection) {
   EXPECT_TRUE(back.section->slice);
   EXPECT_EQ(back.section->slice_bottom_z, 1.15);
   EXPECT_EQ(back.section->slice_thickness, 0.1);
+  ASSERT_TRUE(back.section->slab.has_value());
+  EXPECT_EQ(back.section->slab->point, section.slab->point);
+  EXPECT_EQ(back.section->slab->normal, section.slab->normal);
+  EXPECT_EQ(back.section->slab->thickness, 0.25);
   ASSERT_TRUE(back.section->box.has_value());
   EXPECT_EQ(back.section->box->centre, section.box->centre);
   EXPECT_EQ(back.section->box->half_size, section.box->half_size);

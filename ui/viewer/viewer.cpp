@@ -599,9 +599,15 @@ void Viewer::handleViewEvent(const InputEvent& event) {
           return cornerOfSelected();
         case GLFW_KEY_PAGE_UP:
         case GLFW_KEY_PAGE_DOWN:
-          // The slice steps through the building by its thickness.
+          // The slice steps through the building by its thickness; without one, the slab along
+          // its normal.
           if (clip_.slice) {
             clip_.slice_bottom_z += (event.key == GLFW_KEY_PAGE_UP ? 1.0 : -1.0) * clip_.slice_thickness;
+            return;
+          }
+          if (clip_.slab) {
+            clip_.slab->point +=
+                (event.key == GLFW_KEY_PAGE_UP ? 1.0 : -1.0) * clip_.slab->thickness * clip_.slab->normal;
             return;
           }
           break;
@@ -664,7 +670,7 @@ void Viewer::cornerOfSelected() {
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.message = message; });
 }
 
-void Viewer::showElevationOfSelected() {
+const Segment* Viewer::theSelectedSegment(const std::string& what) {
   const Segment* segment = nullptr;
   std::size_t segments = 0;
   for (const ecs::Entity entity : scene_.selected()) {
@@ -673,12 +679,16 @@ void Viewer::showElevationOfSelected() {
       ++segments;
     }
   }
-  if (!cloud_ || segments != 1) {
-    scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) {
-      t.drawing.message = "elevation: select one segment (" + std::to_string(segments) + " selected)";
-    });
-    return;
-  }
+  if (segments == 1) return segment;
+  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) {
+    t.drawing.message = what + ": select one segment (" + std::to_string(segments) + " selected)";
+  });
+  return nullptr;
+}
+
+void Viewer::showElevationOfSelected() {
+  const Segment* segment = theSelectedSegment("elevation");
+  if (!cloud_ || segment == nullptr) return;
   // The view spans the segment, a little more (its outline's area gives its size).
   const double height_m = std::max(1.0, 1.5 * std::sqrt(std::max(segment->area_m2, 0.0)));
   cloud_->navigator->showElevation(segment->plane.centroid, segment->plane.normal, height_m);

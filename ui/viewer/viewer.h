@@ -125,6 +125,8 @@ class Viewer {
   void drawScanLegend();
   void drawSectionControls();
   void showElevationOfSelected();
+  // The one selected segment, else null with a message that `what` needs one.
+  const Segment* theSelectedSegment(const std::string& what);
   void drawProjectPanel();
   void drawStatusBar();
 
@@ -157,7 +159,7 @@ class Viewer {
   bool quit_ = false;
 
   render::RenderSettings settings_;
-  view::ClipSettings clip_;     // the View panel's section: each frame's settings_.clip
+  view::ClipSettings clip_;       // the View panel's section: each frame's settings_.clip
   float render_scale_ = 1.0f;     // of a still view
   double moving_scale_ = 1.0;     // of a moving view, adapted to the frame time
   bool adaptive_quality_ = true;  // lower resolution and budget while moving

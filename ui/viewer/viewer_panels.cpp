@@ -406,6 +406,23 @@ void Viewer::drawSectionControls() {
     ImGui::DragScalar("Thickness (m)", ImGuiDataType_Double, &clip_.slice_thickness, 0.005f, &thin, &thick, "%.3f",
                       ImGuiSliderFlags_AlwaysClamp);
   }
+  bool slab = clip_.slab.has_value();
+  if (ImGui::Checkbox("Slab", &slab)) {
+    clip_.slab.reset();
+    if (slab) {
+      if (const Segment* segment = theSelectedSegment("slab")) {
+        clip_.slab = view::ClipSlab{segment->plane.centroid, segment->plane.normal.normalized(), 0.2};
+      }
+    }
+  }
+  tooltip(
+      "Keep a slab about the selected segment's plane (a facade's section, with Elevation); Page Up and Page Down "
+      "step it along the plane's normal when no slice is on");
+  if (clip_.slab) {
+    const double thin = 0.005, thick = 10.0;
+    ImGui::DragScalar("Slab thickness (m)", ImGuiDataType_Double, &clip_.slab->thickness, 0.005f, &thin, &thick, "%.3f",
+                      ImGuiSliderFlags_AlwaysClamp);
+  }
   bool box = clip_.box.has_value();
   if (ImGui::Checkbox("Clip box", &box)) {
     // A new box holds the whole cloud: shrink it from there.

@@ -35,6 +35,23 @@ TEST(ClipRegion, ASliceKeepsItsBandAndPlanesTheirSide) {
   EXPECT_FALSE(slab.keeps({3.0, 4.89, 7.0}));
 }
 
+// The settings a user states compose into one region: a slice and a slab about a wall keep the
+// band of the wall within both.
+TEST(ClipRegion, SettingsComposeTheirParts) {
+  ClipSettings settings;
+  EXPECT_FALSE(settings.active());
+  settings.slice = true;
+  settings.slice_bottom_z = 1.0;
+  settings.slice_thickness = 0.5;
+  settings.slab = ClipSlab{{0.0, 5.0, 0.0}, {0.0, 1.0, 0.0}, 0.2};
+  EXPECT_TRUE(settings.active());
+  const ClipRegion region = settings.region();
+  EXPECT_EQ(region.planes.size(), 4u);
+  EXPECT_TRUE(region.keeps({3.0, 5.05, 1.2}));
+  EXPECT_FALSE(region.keeps({3.0, 5.15, 1.2}));  // beyond the slab
+  EXPECT_FALSE(region.keeps({3.0, 5.05, 1.6}));  // above the slice
+}
+
 TEST(ClipRegion, ACellCutAwayHoldsNoKeptPoint) {
   std::mt19937 random(5);
   std::uniform_real_distribution<double> coordinate(-3.0, 3.0), unit(0.0, 1.0);
