@@ -80,6 +80,7 @@ NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera,
   NodeSelection selection;
   const auto planes = frustumPlanes(camera);
   const ScreenScale scale(camera);
+  const view::ClipHalfSpaces clip_spaces = clip.halfSpaces();  // once, for every cell considered
   const lod::Cube& cube = octree.cube();
 
   struct Candidate {
@@ -92,8 +93,9 @@ NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera,
     const lod::NodeInfo* node = octree.find(key);
     if (node == nullptr) return;
     const lod::Box3 box = cube.cellBox(key);
-    if (outside(planes, box) || (clip.active() && clip.cutsAway(Eigen::Vector3d(box.min[0], box.min[1], box.min[2]),
-                                                                Eigen::Vector3d(box.max[0], box.max[1], box.max[2])))) {
+    if (outside(planes, box) ||
+        (clip.active() && clip_spaces.cutsAway(Eigen::Vector3d(box.min[0], box.min[1], box.min[2]),
+                                               Eigen::Vector3d(box.max[0], box.max[1], box.max[2])))) {
       ++selection.culled;
       return;
     }

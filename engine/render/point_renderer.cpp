@@ -219,10 +219,11 @@ struct PointRenderer::Resources {
     }
     shader::ClipPlanes planes{};
     const Eigen::Vector3d anchor = region.anchor();
-    std::vector<view::HalfSpace> spaces = region.boxFaces();
+    const view::ClipHalfSpaces clip = region.halfSpaces();
+    std::vector<view::HalfSpace> spaces = clip.box_faces;
     planes.box_planes = static_cast<std::uint32_t>(spaces.size());
-    planes.keep_outside_box = region.keep_outside_box ? 1u : 0u;
-    for (const view::HalfSpace& h : region.planeHalfSpaces()) spaces.push_back(h);
+    planes.keep_outside_box = clip.keep_outside_box ? 1u : 0u;
+    spaces.insert(spaces.end(), clip.planes.begin(), clip.planes.end());
     planes.plane_count = static_cast<std::uint32_t>(spaces.size());
     for (std::size_t i = 0; i < spaces.size(); ++i) {
       // n . (anchor + p) + d = n . p + (d + n . anchor)

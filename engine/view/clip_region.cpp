@@ -1,5 +1,6 @@
 #include "engine/view/clip_region.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -31,45 +32,35 @@ Eigen::Vector3d ClipRegion::anchor() const {
   return Eigen::Vector3d::Zero();
 }
 
-std::vector<HalfSpace> ClipRegion::boxFaces() const {
-  if (!box) return {};
-  const Eigen::Matrix3d axes = Eigen::AngleAxisd(box->yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  std::vector<HalfSpace> faces;
-  for (Eigen::Index a = 0; a < 3; ++a) {
-    const Eigen::Vector3d axis = axes.col(a);
-    faces.push_back(halfSpace(box->centre + box->half_size[a] * axis, -axis));
-    faces.push_back(halfSpace(box->centre - box->half_size[a] * axis, axis));
+ClipHalfSpaces ClipRegion::halfSpaces() const {
+  ClipHalfSpaces spaces;
+  if (box) {
+    const Eigen::Matrix3d axes = Eigen::AngleAxisd(box->yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    for (Eigen::Index a = 0; a < 3; ++a) {
+      const Eigen::Vector3d axis = axes.col(a);
+      spaces.box_faces.push_back(halfSpace(box->centre + box->half_size[a] * axis, -axis));
+      spaces.box_faces.push_back(halfSpace(box->centre - box->half_size[a] * axis, axis));
+    }
   }
-  return faces;
-}
-
-std::vector<HalfSpace> ClipRegion::planeHalfSpaces() const {
-  std::vector<HalfSpace> spaces;
-  for (const ClipPlane& plane : planes) spaces.push_back(halfSpace(plane.point, plane.normal));
+  spaces.keep_outside_box = keep_outside_box;
+  for (const ClipPlane& plane : planes) spaces.planes.push_back(halfSpace(plane.point, plane.normal));
   return spaces;
 }
 
-// Without allocating: grows call it for every point they load.
-bool ClipRegion::keeps(const Eigen::Vector3d& position) const {
-  for (const ClipPlane& plane : planes) {
-    if ((position - plane.point).dot(plane.normal) < 0.0) return false;
-  }
-  if (!box) return true;
-  // The position in the box's frame: turned back about +z around the centre.
-  const Eigen::Vector3d d = position - box->centre;
-  const double c = std::cos(box->yaw_rad), s = std::sin(box->yaw_rad);
-  const Eigen::Vector3d local(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());
-  const bool inside = (local.cwiseAbs() - box->half_size).maxCoeff() <= 0.0;
-  return inside != keep_outside_box;
+bool ClipHalfSpaces::keeps(const Eigen::Vector3d& position) const {
+  auto holds = [&](const HalfSpace& h) { return h.head<3>().dot(position) + h[3] >= 0.0; };
+  if (!std::all_of(planes.begin(), planes.end(), holds)) return false;
+  if (box_faces.empty()) return true;
+  return std::all_of(box_faces.begin(), box_faces.end(), holds) != keep_outside_box;
 }
 
-bool ClipRegion::cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const {
-  for (const HalfSpace& h : planeHalfSpaces()) {
+bool ClipHalfSpaces::cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const {
+  for (const HalfSpace& h : planes) {
     if (range(h, min, max).second < 0.0) return true;
   }
-  if (!box) return false;
+  if (box_faces.empty()) return false;
   bool wholly_inside = true;
-  for (const HalfSpace& h : boxFaces()) {
+  for (const HalfSpace& h : box_faces) {
     const auto [low, high] = range(h, min, max);
     if (high < 0.0 && !keep_outside_box) return true;  // wholly outside one face
     if (low < 0.0) wholly_inside = false;

@@ -30,6 +30,19 @@ struct ClipPlane {
 // A half-space n . x + d >= 0 in world coordinates.
 using HalfSpace = Eigen::Vector4d;
 
+// A region as half-spaces, made once and tested many times: node selection's cells each frame,
+// the splat's plane buffer, every point a grow loads. The one place their tests are written.
+struct ClipHalfSpaces {
+  std::vector<HalfSpace> box_faces;  // a box's six faces, each keeping the inside; empty: no box
+  bool keep_outside_box = false;
+  std::vector<HalfSpace> planes;  // each must hold
+
+  bool keeps(const Eigen::Vector3d& position) const;
+  // Whether no point of the axis-aligned box from `min` to `max` can be kept: an octree node
+  // there may be skipped. Conservative: false when unsure.
+  bool cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const;
+};
+
 struct ClipRegion {
   std::optional<ClipBox> box;
   bool keep_outside_box = false;
@@ -42,14 +55,13 @@ struct ClipRegion {
   // Where the GPU's positions are taken from (relative positions keep float precision near it):
   // the box's centre, else the first plane's point, else the origin.
   Eigen::Vector3d anchor() const;
-  // The box's six faces, each keeping the inside (empty without a box).
-  std::vector<HalfSpace> boxFaces() const;
-  std::vector<HalfSpace> planeHalfSpaces() const;
+  ClipHalfSpaces halfSpaces() const;
 
-  bool keeps(const Eigen::Vector3d& position) const;
-  // Whether no point of the axis-aligned box from `min` to `max` can be kept: an octree node
-  // there may be skipped. Conservative: false when unsure.
-  bool cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const;
+  // For a test now and then; what tests many points or cells makes halfSpaces() once.
+  bool keeps(const Eigen::Vector3d& position) const { return halfSpaces().keeps(position); }
+  bool cutsAway(const Eigen::Vector3d& min, const Eigen::Vector3d& max) const {
+    return halfSpaces().cutsAway(min, max);
+  }
 };
 
 // A slab of `thickness` centred on the plane through `point` with `normal` (unit): an elevation's

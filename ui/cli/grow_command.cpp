@@ -104,7 +104,9 @@ Command addGrowCommand(CLI::App& plumb) {
 
     double first_progress_ms = -1.0;
     reco::GrowOptions grow_options;
-    if (section.active()) grow_options.keep = [&section](const Eigen::Vector3d& p) { return section.keeps(p); };
+    if (section.active()) {
+      grow_options.keep = [spaces = section.halfSpaces()](const Eigen::Vector3d& p) { return spaces.keeps(p); };
+    }
     const reco::GrowSnapshot result =
         reco::growRegions(cache, parameters, grow_options, [&](const reco::GrowSnapshot& s) {
           if (first_progress_ms < 0.0) first_progress_ms = s.elapsed_ms;

@@ -786,7 +786,7 @@ void Viewer::startGrow(const Eigen::Vector3d& picked) {
   scene_.dropLive();
   reco::GrowOptions options;
   if (grow_panel_.inside_section && clip_.active()) {
-    options.keep = [region = clip_.region()](const Eigen::Vector3d& p) { return region.keeps(p); };
+    options.keep = [spaces = clip_.region().halfSpaces()](const Eigen::Vector3d& p) { return spaces.keeps(p); };
   }
   cloud_->grow->start(*parameters, std::move(options));
   grow_panel_.last = parameters;
