@@ -20,10 +20,11 @@ struct Format {
   void (*write)(const Project&, AtomicFile&);
 };
 
-constexpr std::array<Format, 4> kFormats{{{&ExportTargets::gltf, "glTF", exportGltf},
+constexpr std::array<Format, 5> kFormats{{{&ExportTargets::gltf, "glTF", exportGltf},
                                           {&ExportTargets::obj, "OBJ", exportObj},
                                           {&ExportTargets::dxf, "DXF", exportDxf},
-                                          {&ExportTargets::csv, "CSV", exportCsv}}};
+                                          {&ExportTargets::csv, "CSV", exportCsv},
+                                          {&ExportTargets::measurements, "measurements CSV", exportMeasurementsCsv}}};
 
 // The same file, however it is spelt ("out.obj", "./out.obj").
 std::filesystem::path comparable(const std::string& path) {

@@ -7,6 +7,15 @@
 //
 // x, y, z: world coordinates in metres, every digit of the double (cad/number_text.h);
 // segment_k: the ids of the three segments, empty for none; support_k: their lambda2, m^2.
+//
+// The measurements, in the same dialect, one line each in the project's order:
+//
+//   id,name,kind,value,unit,perimeter_m,from_parallel_deg,from_x,from_y,from_z,to_x,to_y,to_z,source_1,source_2
+//
+// kind: cad/measurement.h's names (distance, angle, point_to_plane, between_planes, height, area);
+// value in unit (m, deg, m2); perimeter_m for an area and from_parallel_deg for two planes, empty
+// otherwise; from, to: the dimension line (MeasureValue); source_k: the item each term was taken
+// on, empty for none.
 
 #include <string>
 
@@ -24,5 +33,9 @@ void exportCsv(const Project& project, AtomicFile& out);
 
 // Writes them to `path` atomically: on any error nothing appears there. Throws as above.
 void exportCsv(const Project& project, const std::string& path);
+
+// The measurements, likewise.
+void exportMeasurementsCsv(const Project& project, AtomicFile& out);
+void exportMeasurementsCsv(const Project& project, const std::string& path);
 
 }  // namespace plumb::cad

@@ -6,7 +6,7 @@
 // cad/export_* write CAD formats). Everything is in world coordinates, metres, double precision.
 //
 // Items refer to each other by id, never by index: ids are unique across all items of a project
-// (segments, edges, corners, polygons, groups share one id space), positive, and stable across
+// (segments, edges, corners, polygons, measurements, groups share one id space), positive, and stable across
 // saves. 0 means "none".
 
 #include <Eigen/Core>
@@ -77,6 +77,42 @@ struct Polygon {
   bool isPrism() const { return !extrusion.isZero(0.0); }
 };
 
+// What a surveyor measured (issue 22, point 4), on the geometry it was taken on as it was then: a
+// measurement is not associative, so regrowing or deleting a segment leaves it as it was. Its
+// value is never stored but always computed from that geometry (cad/measurement.h), so a file
+// cannot hold a value that disagrees with it.
+enum class MeasureKind : std::uint8_t {
+  kDistance,       // point, point: the distance between them
+  kAngle,          // plane or line, plane or line: the angle between them, 0 to 90 degrees
+  kPointToPlane,   // plane, point: the distance from the point to the plane
+  kBetweenPlanes,  // plane, plane, near parallel: their distance apart (a room's width)
+  kHeight,         // plane (a floor), point: the point's height above the floor, vertically
+  kArea,           // polygon: its area and perimeter
+};
+
+// One thing a measurement was taken on.
+struct MeasureTerm {
+  enum class Kind : std::uint8_t { kPoint, kPlane, kLine, kPolygon };
+  Kind kind = Kind::kPoint;
+  // kPoint: the point. kPlane, kLine: the point of the plane or line where it was picked.
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  // kPlane: its unit normal. kLine: its unit direction. Otherwise zero.
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  // kPolygon: its ring (as Polygon::vertices). Otherwise empty.
+  std::vector<Eigen::Vector3d> ring;
+};
+
+struct Measurement {
+  ItemId id = kNoItem;
+  std::string name;
+  ItemId group = kNoItem;
+  MeasureKind kind = MeasureKind::kDistance;
+  std::vector<MeasureTerm> terms;  // as `kind` asks (cad/measurement.h, measureProblem)
+  // For each term, the item it was taken on (a segment, edge, corner or polygon), or kNoItem
+  // (a point of the cloud, a typed point, an item deleted since). As many as terms.
+  std::vector<ItemId> sources;
+};
+
 struct Project {
   // The cloud the project was made on: as the user gave it (absolute, or relative to the
   // project file's folder). May be empty (a project of the built-in demo records the demo path).
@@ -89,6 +125,7 @@ struct Project {
   std::vector<Edge> edges;
   std::vector<Corner> corners;
   std::vector<Polygon> polygons;
+  std::vector<Measurement> measurements;
 };
 
 }  // namespace plumb::cad

@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "cad/json_place.h"
+#include "cad/measurement.h"
 #include "cad/project_validation.h"
 #include "cad/text_file.h"
 #include "engine/core/atomic_file.h"
@@ -53,6 +54,12 @@ std::array<Value, N> readArray(const JsonPlace& at, Read read) {
 std::vector<Eigen::Vector2d> readPoints2(const JsonPlace& at) {
   std::vector<Eigen::Vector2d> points(at.expectArray());
   for (std::size_t i = 0; i < points.size(); ++i) points[i] = at.element(i).vector2();
+  return points;
+}
+
+std::vector<Eigen::Vector3d> readPoints3(const JsonPlace& at) {
+  std::vector<Eigen::Vector3d> points(at.expectArray());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = at.element(i).vector3();
   return points;
 }
 
@@ -148,11 +155,43 @@ Polygon readPolygon(const JsonPlace& at) {
   polygon.name = optionalString(at, "name");
   polygon.group = optionalReference(at, "group");
   polygon.plane = optionalReference(at, "plane");
-  const JsonPlace vertices = at.field("vertices");
-  polygon.vertices.resize(vertices.expectArray());
-  for (std::size_t v = 0; v < polygon.vertices.size(); ++v) polygon.vertices[v] = vertices.element(v).vector3();
+  polygon.vertices = readPoints3(at.field("vertices"));
   if (const auto extrusion = at.optionalField("extrusion")) polygon.extrusion = extrusion->vector3();
   return polygon;
+}
+
+MeasureTerm readMeasureTerm(const JsonPlace& at) {
+  at.expectObject({"kind", "point", "direction", "ring"});
+  MeasureTerm term;
+  const JsonPlace kind = at.field("kind");
+  const std::optional<MeasureTerm::Kind> named = measureTermKindNamed(kind.string());
+  if (!named) throw kind.error("expected \"point\", \"plane\", \"line\" or \"polygon\"");
+  term.kind = *named;
+  if (term.kind == MeasureTerm::Kind::kPolygon) {
+    term.ring = readPoints3(at.field("ring"));
+  } else {
+    term.point = at.field("point").vector3();
+    if (term.kind != MeasureTerm::Kind::kPoint) term.direction = at.field("direction").vector3();
+  }
+  return term;
+}
+
+Measurement readMeasurement(const JsonPlace& at) {
+  at.expectObject({"id", "name", "group", "kind", "terms", "sources"});
+  Measurement measurement;
+  measurement.id = at.field("id").id();
+  measurement.name = optionalString(at, "name");
+  measurement.group = optionalReference(at, "group");
+  const JsonPlace kind = at.field("kind");
+  const std::optional<MeasureKind> named = measureKindNamed(kind.string());
+  if (!named) {
+    throw kind.error(
+        "expected \"distance\", \"angle\", \"point_to_plane\", \"between_planes\", \"height\" or \"area\"");
+  }
+  measurement.kind = *named;
+  measurement.terms = readList(at, "terms", readMeasureTerm);
+  measurement.sources = readList(at, "sources", [](const JsonPlace& v) { return v.whole(); });
+  return measurement;
 }
 
 // Writing, in the order of docs/project-file.md (an ordered_json keeps it).
@@ -207,6 +246,19 @@ OrderedJson itemJson(ItemId id, const std::string& name, ItemId group) {
   json["id"] = id;
   json["name"] = name;
   json["group"] = group;
+  return json;
+}
+
+OrderedJson measureTermJson(const MeasureTerm& term) {
+  OrderedJson json;
+  json["kind"] = measureTermKindName(term.kind);
+  if (term.kind == MeasureTerm::Kind::kPolygon) {
+    json["ring"] = OrderedJson::array();
+    for (const Eigen::Vector3d& v : term.ring) json["ring"].push_back(vector(v));
+  } else {
+    json["point"] = vector(term.point);
+    if (term.kind != MeasureTerm::Kind::kPoint) json["direction"] = vector(term.direction);
+  }
   return json;
 }
 
@@ -317,6 +369,15 @@ OrderedJson projectJson(const Project& project) {
     item["extrusion"] = vector(polygon.extrusion);
     json["polygons"].push_back(std::move(item));
   }
+  json["measurements"] = OrderedJson::array();
+  for (const Measurement& measurement : project.measurements) {
+    OrderedJson item = itemJson(measurement.id, measurement.name, measurement.group);
+    item["kind"] = measureKindName(measurement.kind);
+    item["terms"] = OrderedJson::array();
+    for (const MeasureTerm& term : measurement.terms) item["terms"].push_back(measureTermJson(term));
+    item["sources"] = measurement.sources;
+    json["measurements"].push_back(std::move(item));
+  }
   return json;
 }
 
@@ -384,8 +445,8 @@ Project readProjectFile(const std::string& path) {
     throw version.error("written by a newer Plumb (version " + std::to_string(number) + "); this build reads up to " +
                         std::to_string(kProjectFileVersion) + ": update Plumb");
   }
-  root.expectObject(
-      {"format", "version", "cloud", "camera", "section", "groups", "segments", "edges", "corners", "polygons"});
+  root.expectObject({"format", "version", "cloud", "camera", "section", "groups", "segments", "edges", "corners",
+                     "polygons", "measurements"});
 
   Project project;
   project.cloud_path = optionalString(root, "cloud");
@@ -398,6 +459,7 @@ Project readProjectFile(const std::string& path) {
   project.edges = readList(root, "edges", readEdge);
   project.corners = readList(root, "corners", readCorner);
   project.polygons = readList(root, "polygons", readPolygon);
+  project.measurements = readList(root, "measurements", readMeasurement);
 
   if (const auto problem = findProjectProblem(project)) {
     throw fileError(path, "field '" + problem->place + "': " + problem->what);

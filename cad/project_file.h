@@ -12,7 +12,7 @@
 namespace plumb::cad {
 
 // The format version this build writes and the newest it reads.
-inline constexpr int kProjectFileVersion = 2;  // 2 added "section"
+inline constexpr int kProjectFileVersion = 3;  // 2 added "section", 3 "measurements"
 
 // Reads and validates a project file. Throws plumb::Error whose message starts with the quoted
 // path and says where (the byte offset for text that is not JSON, otherwise the JSON path of the

@@ -3,13 +3,14 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "cad/measurement.h"
 #include "cad/polygon_mesh.h"
 #include "engine/core/error.h"
 
 namespace plumb::cad {
 namespace {
 
-enum class Kind { kGroup, kSegment, kEdge, kCorner, kPolygon };
+enum class Kind { kGroup, kSegment, kEdge, kCorner, kPolygon, kMeasurement };
 
 const char* kindName(Kind kind) {
   switch (kind) {
@@ -23,6 +24,8 @@ const char* kindName(Kind kind) {
       return "corner";
     case Kind::kPolygon:
       return "polygon";
+    case Kind::kMeasurement:
+      return "measurement";
   }
   return "item";
 }
@@ -53,12 +56,16 @@ class Checker {
     for (std::size_t i = 0; i < project_.polygons.size(); ++i) {
       addId("polygons", i, project_.polygons[i].id, Kind::kPolygon);
     }
+    for (std::size_t i = 0; i < project_.measurements.size(); ++i) {
+      addId("measurements", i, project_.measurements[i].id, Kind::kMeasurement);
+    }
     if (problem_) return problem_;
 
     for (std::size_t i = 0; i < project_.segments.size(); ++i) checkSegment(i);
     for (std::size_t i = 0; i < project_.edges.size(); ++i) checkEdge(i);
     for (std::size_t i = 0; i < project_.corners.size(); ++i) checkCorner(i);
     for (std::size_t i = 0; i < project_.polygons.size(); ++i) checkPolygon(i);
+    for (std::size_t i = 0; i < project_.measurements.size(); ++i) checkMeasurement(i);
     return problem_;
   }
 
@@ -178,6 +185,33 @@ class Checker {
         std::abs(polygonNormal(polygon.vertices).dot(polygon.extrusion)) < kPolygonResolution) {
       fail(at("polygons", i, "extrusion"),
            "the extrusion lies in the polygon's plane: a prism needs a height along the polygon's normal");
+    }
+  }
+
+  void checkMeasurement(std::size_t i) {
+    const Measurement& measurement = project_.measurements[i];
+    reference(at("measurements", i, "group"), measurement.group, Kind::kGroup);
+    if (const auto problem = measureProblem(measurement.kind, measurement.terms)) {
+      return fail(at("measurements", i, "terms"), *problem);
+    }
+    if (measurement.sources.size() != measurement.terms.size()) {
+      return fail(at("measurements", i, "sources"),
+                  "must name one item (or 0) per term: " + std::to_string(measurement.terms.size()) + " terms, " +
+                      std::to_string(measurement.sources.size()) + " sources");
+    }
+    // A term is taken on a segment, an edge, a corner or a polygon; never on a group or another
+    // measurement.
+    for (std::size_t k = 0; k < measurement.sources.size(); ++k) {
+      const ItemId id = measurement.sources[k];
+      const std::string place = at("measurements", i, "sources[" + std::to_string(k) + "]");
+      const auto it = items_.find(id);
+      if (id == kNoItem) continue;
+      if (it == items_.end()) {
+        fail(place, "refers to id " + std::to_string(id) + ", which no item of the project has");
+      } else if (it->second.kind == Kind::kGroup || it->second.kind == Kind::kMeasurement) {
+        fail(place, "refers to id " + std::to_string(id) + ", which is a " + kindName(it->second.kind) + " (" +
+                        it->second.place + "): a measurement is taken on a segment, edge, corner or polygon");
+      }
     }
   }
 

@@ -28,7 +28,9 @@ inline constexpr double kUnitTolerance = 1e-6;
 // - every number is finite; a segment's plane is valid, with unit normal, tangent and bitangent;
 //   its outline's axes are perpendicular unit vectors and its triangles index its vertices;
 // - a polygon's ring passes findPolygonProblem (cad/polygon_mesh.h, default tolerance), and a
-//   prism's extrusion moves it off its plane by at least kPolygonResolution.
+//   prism's extrusion moves it off its plane by at least kPolygonResolution;
+// - a measurement's terms pass measureProblem (cad/measurement.h), and it names one source per
+//   term: kNoItem or a segment, edge, corner or polygon.
 // O(items + vertices) plus findPolygonProblem's O(n^2) per polygon. Thread-safe.
 std::optional<ProjectProblem> findProjectProblem(const Project& project);
 

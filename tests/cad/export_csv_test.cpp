@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cad/measurement.h"
 #include "tests/cad/sample_project.h"
 #include "tests/support/temp_directory.h"
 
@@ -80,6 +81,55 @@ TEST(ExportCsv, AProjectWithoutCornersIsTheHeader) {
   const std::string path = directory.file("corners.csv");
   exportCsv(Project{}, path);
   EXPECT_EQ(parseCsv(plumb::test::readFile(path)).size(), 1u);
+}
+
+TEST(ExportCsv, MeasurementsWithTheirValuesAndDimensionLines) {
+  plumb::test::TempDirectory directory;
+  const Project project = test::sampleProject();
+  const std::string path = directory.file("measurements.csv");
+  exportMeasurementsCsv(project, path);
+  const auto records = parseCsv(plumb::test::readFile(path));
+  ASSERT_EQ(records.size(), 1u + project.measurements.size());
+  EXPECT_EQ(records[0],
+            (std::vector<std::string>{"id", "name", "kind", "value", "unit", "perimeter_m", "from_parallel_deg",
+                                      "from_x", "from_y", "from_z", "to_x", "to_y", "to_z", "source_1", "source_2"}));
+  for (std::size_t i = 0; i < project.measurements.size(); ++i) {
+    const Measurement& m = project.measurements[i];
+    const MeasureValue value = measure(m.kind, m.terms);
+    const std::vector<std::string>& row = records[i + 1];
+    ASSERT_EQ(row.size(), 15u);
+    EXPECT_EQ(row[0], std::to_string(m.id));
+    EXPECT_EQ(row[1], m.name);
+    EXPECT_EQ(row[2], measureKindName(m.kind));
+    EXPECT_EQ(std::stod(row[3]), value.value) << "every digit";
+    EXPECT_EQ(row[4], measureUnit(m.kind));
+    EXPECT_EQ(row[5].empty(), m.kind != MeasureKind::kArea);
+    EXPECT_EQ(row[6].empty(), m.kind != MeasureKind::kBetweenPlanes);
+    for (Eigen::Index axis = 0; axis < 3; ++axis) {
+      EXPECT_EQ(std::stod(row[static_cast<std::size_t>(7 + axis)]), value.from[axis]);
+      EXPECT_EQ(std::stod(row[static_cast<std::size_t>(10 + axis)]), value.to[axis]);
+    }
+    EXPECT_EQ(row[13], std::to_string(m.sources[0]));
+    EXPECT_EQ(row[14], m.sources.size() > 1 && m.sources[1] != kNoItem ? std::to_string(m.sources[1]) : "");
+  }
+  EXPECT_EQ(records[6][2], "area");
+  EXPECT_EQ(std::stod(records[6][5]), 5.0) << "the L's perimeter";
+  EXPECT_EQ(records[1][13], "30") << "taken from the corner";
+}
+
+TEST(ExportCsv, AnInvalidMeasurementIsRefusedAndNothingWritten) {
+  plumb::test::TempDirectory directory;
+  Project project = test::sampleProject();
+  project.measurements[3].terms[1].direction = Eigen::Vector3d::UnitY();  // not parallel any more
+  const std::string path = directory.file("measurements.csv");
+  try {
+    exportMeasurementsCsv(project, path);
+    ADD_FAILURE() << "exported";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("field 'measurements[3].terms': the planes are 90.00"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_EQ(directory.entryCount(), 0u);
 }
 
 }  // namespace

@@ -20,20 +20,22 @@ std::string errorOf(const Project& project, const ExportTargets& targets) {
 
 ExportTargets targetsIn(const plumb::test::TempDirectory& directory) {
   return {directory.file("room.glb"), directory.file("room.obj"), directory.file("room.dxf"),
-          directory.file("room.csv")};
+          directory.file("room.csv"), directory.file("room-measurements.csv")};
 }
 
 TEST(ExportAll, WritesEveryFormatAsked) {
   plumb::test::TempDirectory directory;
   const ExportTargets targets = targetsIn(directory);
   const std::vector<std::string> written = exportAll(test::sampleProject(), targets);
-  EXPECT_EQ(written, (std::vector<std::string>{targets.gltf, targets.obj, targets.dxf, targets.csv}));
-  EXPECT_EQ(directory.entryCount(), 4u) << "the four outputs and no temporary";
+  EXPECT_EQ(written,
+            (std::vector<std::string>{targets.gltf, targets.obj, targets.dxf, targets.csv, targets.measurements}));
+  EXPECT_EQ(directory.entryCount(), 5u) << "the five outputs and no temporary";
   EXPECT_EQ(plumb::test::readFile(targets.gltf).substr(0, 4), "glTF");
   EXPECT_EQ(plumb::test::readFile(targets.dxf).substr(0, 12), "  0\nSECTION\n");
 
-  EXPECT_EQ(exportAll(test::sampleProject(), {.gltf = "", .obj = "", .dxf = "", .csv = targets.csv}),
-            std::vector<std::string>{targets.csv});
+  EXPECT_EQ(
+      exportAll(test::sampleProject(), {.gltf = "", .obj = "", .dxf = "", .csv = targets.csv, .measurements = ""}),
+      std::vector<std::string>{targets.csv});
   EXPECT_TRUE(exportAll(test::sampleProject(), {}).empty());
 }
 

@@ -125,6 +125,25 @@ void expectSame(const Project& a, const Project& b) {
     }
     expectSame(a.polygons[i].extrusion, b.polygons[i].extrusion, "extrusion");
   }
+  ASSERT_EQ(a.measurements.size(), b.measurements.size());
+  for (std::size_t i = 0; i < a.measurements.size(); ++i) {
+    const Measurement& m = a.measurements[i];
+    const Measurement& n = b.measurements[i];
+    EXPECT_EQ(m.id, n.id);
+    EXPECT_EQ(m.name, n.name);
+    EXPECT_EQ(m.group, n.group);
+    EXPECT_EQ(m.kind, n.kind);
+    EXPECT_EQ(m.sources, n.sources);
+    ASSERT_EQ(m.terms.size(), n.terms.size());
+    for (std::size_t k = 0; k < m.terms.size(); ++k) {
+      EXPECT_EQ(m.terms[k].kind, n.terms[k].kind);
+      expectSame(m.terms[k].point, n.terms[k].point, "term point");
+      expectSame(m.terms[k].direction, n.terms[k].direction, "term direction");
+      ASSERT_EQ(m.terms[k].ring.size(), n.terms[k].ring.size());
+      for (std::size_t v = 0; v < m.terms[k].ring.size(); ++v)
+        expectSame(m.terms[k].ring[v], n.terms[k].ring[v], "ring");
+    }
+  }
 }
 
 TEST(ProjectFile, RoundTripsEveryFieldBitForBit) {
@@ -194,7 +213,7 @@ TEST(ProjectFile, KeepsTheViewsSection) {
   writeProjectFile(test::sampleProject(), path);
   text = plumb::test::readFile(path);
   EXPECT_EQ(text.find("\"section\""), std::string::npos) << "no section, no field";
-  text.replace(text.find("\"version\": 2"), 12, "\"version\": 1");
+  text.replace(text.find("\"version\": 3"), 12, "\"version\": 1");
   plumb::test::writeFile(path, text);
   EXPECT_FALSE(readProjectFile(path).section.has_value());
 }
@@ -204,7 +223,7 @@ TEST(ProjectFile, IsReadableJsonWithFormatAndVersionFirst) {
   const std::string path = directory.file("room.plumbproj");
   writeProjectFile(test::sampleProject(), path);
   const std::string text = plumb::test::readFile(path);
-  EXPECT_EQ(text.rfind("{\n  \"format\": \"plumb-project\",\n  \"version\": 2,\n", 0), 0u) << text.substr(0, 80);
+  EXPECT_EQ(text.rfind("{\n  \"format\": \"plumb-project\",\n  \"version\": 3,\n", 0), 0u) << text.substr(0, 80);
   EXPECT_NE(text.find("\"normal\": [1.0,0.0,0.0]"), std::string::npos) << "vectors on one line";
   const nlohmann::json json = nlohmann::json::parse(text);
   EXPECT_EQ(json["polygons"][2]["extrusion"][2], 0.8125);
@@ -259,8 +278,8 @@ TEST_F(ProjectFileErrors, FormatAndVersion) {
   expectError(errorFor([](nlohmann::json& j) { j["format"] = "plumb-camera"; }),
               {"field 'format'", "not a Plumb project file"});
   expectError(errorFor([](nlohmann::json& j) { j.erase("format"); }), {"field 'format': missing"});
-  expectError(errorFor([](nlohmann::json& j) { j["version"] = 3; }),
-              {"field 'version'", "written by a newer Plumb (version 3); this build reads up to 2"});
+  expectError(errorFor([](nlohmann::json& j) { j["version"] = 4; }),
+              {"field 'version'", "written by a newer Plumb (version 4); this build reads up to 3"});
   expectError(errorFor([](nlohmann::json& j) { j["version"] = 0; }), {"field 'version'", "whole number"});
 }
 
@@ -302,6 +321,42 @@ TEST_F(ProjectFileErrors, IdsAndReferences) {
               {"field 'polygons[1].group'", "which is a segment", "not a group"});
   expectError(errorFor([](nlohmann::json& j) { j["polygons"][0]["plane"] = 30; }),
               {"field 'polygons[0].plane'", "which is a corner"});
+}
+
+TEST_F(ProjectFileErrors, MeasurementsTheRulesRefuse) {
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][0]["kind"] = "volume"; }),
+              {"field 'measurements[0].kind'", "\"distance\", \"angle\""});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][1]["terms"][1]["kind"] = "edge"; }),
+              {"field 'measurements[1].terms[1].kind'", "\"point\", \"plane\", \"line\" or \"polygon\""});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][0]["terms"].erase(1); }),
+              {"field 'measurements[0].terms': Distance takes 2 terms, not 1"});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][4]["terms"][0]["kind"] = "point"; }),
+              {"field 'measurements[4].terms': Height: term 1 must be a plane, not a point"});
+  expectError(errorFor([](nlohmann::json& j) {
+                j["measurements"][3]["terms"][1]["direction"] = {0.0, 1.0, 0.0};
+              }),
+              {"field 'measurements[3].terms': the planes are 90.00", "from parallel", "measure their angle instead"});
+  expectError(errorFor([](nlohmann::json& j) {
+                j["measurements"][4]["terms"][0]["direction"] = {1.0, 0.0, 0.0};
+              }),
+              {"field 'measurements[4].terms': the floor is tilted 90.00"});
+  expectError(errorFor([](nlohmann::json& j) {
+                j["measurements"][1]["terms"][0]["direction"] = {0.5, 0.0, 0.0};
+              }),
+              {"field 'measurements[1].terms': term 1 (plane): its direction must be a unit vector"});
+  expectError(errorFor([](nlohmann::json& j) {
+                auto& ring = j["measurements"][5]["terms"][0]["ring"];
+                ring[1] = ring[0];
+              }),
+              {"field 'measurements[5].terms': term 1 (polygon): "});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][0]["sources"] = {30}; }),
+              {"field 'measurements[0].sources': must name one item (or 0) per term: 2 terms, 1 sources"});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][0]["sources"][1] = 2; }),
+              {"field 'measurements[0].sources[1]': refers to id 2, which is a group (groups[1])"});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][0]["sources"][1] = 99; }),
+              {"field 'measurements[0].sources[1]': refers to id 99, which no item of the project has"});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][2]["id"] = 30; }),
+              {"field 'measurements[2].id': id 30 is already the id of corners[0]"});
 }
 
 TEST_F(ProjectFileErrors, GeometryTheRulesRefuse) {

@@ -14,8 +14,8 @@
 //    x
 //
 // Groups 1 ("walls") and 2 ("furniture"); edges 20, 21, 22 along the three intersections; the
-// corner 30 where all three meet. Coordinates are deliberately untidy doubles (a slightly tilted
-// floor, an origin with nine decimals) so that a round trip that loses a bit shows.
+// corner 30 where all three meet; measurements 50 to 55, one of each kind. Coordinates are deliberately untidy doubles
+// (a slightly tilted floor, an origin with nine decimals) so that a round trip that loses a bit shows.
 
 #include <Eigen/Geometry>
 #include <vector>
@@ -122,6 +122,45 @@ inline Project sampleProject() {
        std::vector<Eigen::Vector3d>{o + Eigen::Vector3d(0.5, 2.0, 0.0), o + Eigen::Vector3d(1.5, 2.0, 0.0),
                                     o + Eigen::Vector3d(1.5, 2.75, 0.0), o + Eigen::Vector3d(0.5, 2.75, 0.0)},
        Eigen::Vector3d(0.0, 0.0, 0.8125)});
+
+  // One measurement of each kind, on the items above and on points of the cloud (source 0).
+  const auto point = [](const Eigen::Vector3d& p) {
+    return MeasureTerm{MeasureTerm::Kind::kPoint, p, Eigen::Vector3d::Zero(), {}};
+  };
+  const auto plane = [](const Eigen::Vector3d& p, const Eigen::Vector3d& normal) {
+    return MeasureTerm{MeasureTerm::Kind::kPlane, p, normal.normalized(), {}};
+  };
+  const MeasureTerm wall_x = plane(o + Eigen::Vector3d(0.0, 1.0, 1.0), Eigen::Vector3d::UnitX());
+  const MeasureTerm on_floor = plane(o + Eigen::Vector3d(1.0, 1.0, 0.0), floor_plane.normal);
+  project.measurements = {
+      {50,
+       "corner to desk",
+       2,
+       MeasureKind::kDistance,
+       {point(project.corners[0].position), point(o + Eigen::Vector3d(3.25, 2.125, 0.75))},
+       {30, 0}},
+      {51,
+       "wall to floor edge",
+       1,
+       MeasureKind::kAngle,
+       {wall_x,
+        MeasureTerm{MeasureTerm::Kind::kLine, o + Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d::UnitX(), {}}},
+       {11, 21}},
+      {52, "", 0, MeasureKind::kPointToPlane, {wall_x, point(o + Eigen::Vector3d(3.9375, 2.0, 1.0))}, {11, 0}},
+      {53,
+       "room width",
+       0,
+       MeasureKind::kBetweenPlanes,
+       {wall_x, plane(o + Eigen::Vector3d(4.0, 2.0, 1.5), Eigen::Vector3d(-1.0, 1e-3, 0.0))},
+       {11, 0}},
+      {54, "ceiling height", 0, MeasureKind::kHeight, {on_floor, point(o + Eigen::Vector3d(1.5, 1.5, 2.5))}, {10, 0}},
+      {55,
+       "L area",
+       2,
+       MeasureKind::kArea,
+       {MeasureTerm{MeasureTerm::Kind::kPolygon, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                    project.polygons[1].vertices}},
+       {41}}};
   return project;
 }
 

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -118,9 +119,17 @@ TEST(Viewer, AClickOnTheDemoWallGrowsItsPlane) {
   }
 }
 
+json world(const Eigen::Vector3d& p) {
+  return json::array({p.x(), p.y(), p.z()});
+}
+
 // A point file, imported on a background job while the window shows the progress, opened in a
 // camera file's view: a click near a room corner grows its two walls and the ceiling, and the
-// corner they make lies on the simulator's.
+// corner they make lies on the simulator's. Then every kind of measurement, as a surveyor takes
+// them: from the corner to the wall, the room's height between floor and ceiling, the angle of a
+// wall to the floor, a point's distance to a wall, the corner's height above the floor, a drawn
+// rectangle's area; each within a few times the statistical limit of the planes it was taken
+// on, saved in the project and exported as CSV.
 TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   const plumb::test::TempDirectory dir;
   const fs::path ply = dir.file("room.ply"), truth_path = dir.file("room.json");
@@ -131,20 +140,59 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   const fs::path camera = dir.file("camera.json"), scene = dir.file("scene.json");
   std::ofstream(camera) << R"({"format": "plumb-camera", "version": 1, "position": [512003.5, 5403002.5, 251.5],
                             "target": [512007.0, 5403005.0, 252.2], "fov_deg": 70, "viewport": [1280, 720]})";
-  const Eigen::Vector3d corner(512007.0, 5403005.0, 252.5);
+  const Eigen::Vector3d offset(512000.0, 5403000.0, 250.0);
+  const Eigen::Vector3d corner = offset + Eigen::Vector3d(7.0, 5.0, 2.5);
   const Eigen::Vector3d on_ceiling = corner + Eigen::Vector3d(-0.25, -0.25, 0.0);
   const Eigen::Vector3d on_wall = corner + Eigen::Vector3d(-2.0, 0.0, -1.0);  // the y+ wall, beside the window
+  const Eigen::Vector3d on_wall_x = corner + Eigen::Vector3d(0.0, -0.8, -0.7);
+  const Eigen::Vector3d on_floor = offset + Eigen::Vector3d(5.0, 3.0, 0.0);
   const json steps = json::array({
       {{"wait", "streaming_idle"}, {"timeout_s", 300}},
-      {{"click_world", json::array({on_ceiling.x(), on_ceiling.y(), on_ceiling.z()})}},
+      {{"click_world", world(on_ceiling)}},
       {{"wait", "grower_idle"}, {"timeout_s", 300}},
       {{"wait", "frames"}, {"count", 2}},
       // Measure from the corner the planes make to the wall, snapped.
       {{"tool", "measure"}},
-      {{"click_world", json::array({corner.x(), corner.y(), corner.z()})}},
+      {{"click_world", world(corner)}},
       {{"wait", "frames"}, {"count", 2}},
-      {{"click_world", json::array({on_wall.x(), on_wall.y(), on_wall.z()})}},
+      {{"click_world", world(on_wall)}},
       {{"wait", "frames"}, {"count", 2}},
+      // Level, from the room's middle: the floor, the ceiling and the x+ wall in view. The floor grows.
+      {{"look",
+        {{"position", world(offset + Eigen::Vector3d(1.0, 1.0, 1.25))},
+         {"target", world(offset + Eigen::Vector3d(7.0, 5.0, 1.25))}}}},
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"tool", "grow"}},
+      {{"click_world", world(on_floor)}},
+      {{"wait", "grower_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 2}},
+      {{"measure", "between_planes"}},
+      {{"click_world", world(on_ceiling)}},
+      {{"click_world", world(on_floor)}},
+      {{"measure", "angle"}},
+      {{"click_world", world(on_wall_x)}},
+      {{"click_world", world(on_floor)}},
+      {{"measure", "point_to_plane"}},
+      {{"click_world", world(on_wall_x)}},
+      {{"click_world", world(on_floor)}},
+      {{"measure", "height"}},
+      {{"wait", "ms"}, {"ms", 600}},  // two clicks on one place in a moment would be a double click (a focus)
+      {{"click_world", world(on_floor)}},
+      {{"click_world", world(corner)}},
+      // A 1 m square on the floor (a rectangle from three points), and its area.
+      {{"tool", "polygon"}},
+      {{"key", "R"}},
+      {{"click_world", world(on_floor + Eigen::Vector3d(-0.5, -0.5, 0.0))}},
+      {{"click_world", world(on_floor + Eigen::Vector3d(0.5, -0.5, 0.0))}},
+      {{"click_world", world(on_floor + Eigen::Vector3d(0.5, 0.5, 0.0))}},
+      {{"measure", "area"}},
+      {{"click_world", world(on_floor)}},
+      {{"wait", "frames"}, {"count", 2}},
+      {{"screenshot", "measurements.png"}},
+      {{"key_down", "LEFT_CONTROL"}},
+      {{"key", "S"}},
+      {{"key", "E"}},
+      {{"key_up", "LEFT_CONTROL"}},
   });
   // Built by appending: GCC 12 -O3 warns (-Wrestrict) on "'" + std::string.
   std::string arguments = "'";
@@ -155,7 +203,7 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   ASSERT_EQ(plumb::test::runViewerSession(dir, arguments, steps), 0);
   plumb::test::keepScreenshots(dir);
   const json dump = readJson(scene);
-  ASSERT_GE(dump.at("segments").size(), 3u);
+  ASSERT_GE(dump.at("segments").size(), 4u);
   // Within a few times the statistical limit of this scan at the corner (its three walls fitted
   // on all their true points, tests/support/simulated_truth.h).
   const plumb::test::SimulatedTruth simulated(ply.string(), truth_path.string());
@@ -168,18 +216,47 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
       "%zu segments, %zu corners; the nearest %.4f mm from the true corner (the limit's standard error %.4f mm)\n",
       dump.at("segments").size(), dump.at("corners").size(), nearest_m * 1e3, limit.standard_error_m * 1e3);
   EXPECT_LT(nearest_m, allowed_m) << "no corner within " << allowed_m * 1e3 << " mm of the room's (2 mm noise)";
-  const json& measure = dump.at("measure");
-  ASSERT_FALSE(measure.is_null()) << "the measurement did not happen";
-  EXPECT_EQ(measure.at("from_kind"), "corner");
-  EXPECT_EQ(measure.at("to_kind"), "plane");
-  // From the snapped corner to the y+ wall's plane: the corner's error and the wall's at the
-  // second click together.
-  const plumb::test::PlaneLimit wall = simulated.planeLimit("room wall y+", on_wall);
-  const double measure_allowed_m =
-      plumb::test::kEndToEndLimitFactor * std::hypot(limit.standard_error_m, wall.distance_error_m);
-  std::printf("measured %.4f mm off the truth (allowed %.4f mm)\n",
-              (measure.at("distance_m").get<double>() - (on_wall - corner).norm()) * 1e3, measure_allowed_m * 1e3);
-  EXPECT_NEAR(measure.at("distance_m").get<double>(), (on_wall - corner).norm(), measure_allowed_m);
+
+  const json& taken = dump.at("measurements");
+  ASSERT_EQ(taken.size(), 6u) << taken.dump(1);
+  const auto expectMeasured = [&](std::size_t i, const char* kind, double truth, double allowed) {
+    const json& m = taken.at(i);
+    EXPECT_EQ(m.at("kind"), kind);
+    const double value = m.at("value").get<double>();
+    std::printf("%s: %s, %.6f off the truth %.4f (allowed %.6f)\n", m.at("name").get<std::string>().c_str(),
+                m.at("text").get<std::string>().c_str(), value - truth, truth, allowed);
+    EXPECT_NEAR(value, truth, allowed) << m.dump();
+  };
+  const double k = plumb::test::kEndToEndLimitFactor;
+  const plumb::test::PlaneLimit wall_y = simulated.planeLimit("room wall y+", on_wall);
+  const plumb::test::PlaneLimit wall_x = simulated.planeLimit("room wall x+", on_wall_x);
+  const plumb::test::PlaneLimit floor = simulated.planeLimit("room floor", on_floor);
+  const plumb::test::PlaneLimit ceiling = simulated.planeLimit("room ceiling", on_ceiling);
+  const double degrees = 180.0 / M_PI;
+  // From the snapped corner to the y+ wall's plane: the corner's error and the wall's together.
+  const json& distance = taken.at(0);
+  EXPECT_EQ(distance.at("sources").at(0).is_null(), false) << "taken on the corner";
+  expectMeasured(0, "distance", (on_wall - corner).norm(),
+                 k * std::hypot(limit.standard_error_m, wall_y.distance_error_m));
+  expectMeasured(1, "between_planes", 2.5, k * std::hypot(floor.distance_error_m, ceiling.distance_error_m));
+  expectMeasured(2, "angle", 90.0, k * degrees * std::hypot(floor.angle_error_rad, wall_x.angle_error_rad));
+  // The clicked point of the floor lies where the pixel's ray met the grown floor: its distance to
+  // the true wall is the truth.
+  const Eigen::Vector3d point = vector3(taken.at(3).at("from"));
+  expectMeasured(3, "point_to_plane", std::abs(wall_x.normal.dot(point) + wall_x.d),
+                 k * std::hypot(wall_x.distance_error_m, floor.distance_error_m));
+  expectMeasured(4, "height", 2.5, k * std::hypot(limit.standard_error_m, floor.distance_error_m));
+  // The drawn square: its vertices where the clicks met the floor, a pixel (about 8 mm here) apart
+  // from where they were aimed.
+  expectMeasured(5, "area", 1.0, 0.03);
+  EXPECT_NEAR(taken.at(5).at("second").get<double>(), 4.0, 0.05) << "the perimeter";
+
+  // Saved with the project, exported beside it.
+  const json project = readJson(ply.string() + ".plumbproj");
+  EXPECT_EQ(project.at("measurements").size(), 6u);
+  const std::string csv = plumb::test::readFile(ply.string() + "-measurements.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7) << csv;
+  EXPECT_NE(csv.find(",between_planes,"), std::string::npos) << csv;
 }
 
 // A slice (plumb view --slice) keeps a band of the room: seen from above, a click on the

@@ -41,11 +41,19 @@ Command addExportCommand(CLI::App& plumb) {
   sub->add_option("--obj", parsed.obj, "A Wavefront OBJ file: one object per item")->type_name("FILE");
   sub->add_option("--dxf", parsed.dxf, "An ASCII DXF (R2000) drawing: one layer per kind of item")->type_name("FILE");
   sub->add_option("--csv", parsed.csv, "The corners as CSV: id, name, x, y, z, segments, support")->type_name("FILE");
+  sub->add_option("--measurements", parsed.measurements,
+                  "The measurements as CSV: id, name, kind, value, unit, perimeter, angle from parallel, "
+                  "dimension line, sources")
+      ->type_name("FILE");
 
   auto run = [options]() -> int {
     const cad::ExportTargets& targets = options->targets;
-    const std::array<std::pair<const char*, const std::string*>, 4> outputs{
-        {{"--gltf", &targets.gltf}, {"--obj", &targets.obj}, {"--dxf", &targets.dxf}, {"--csv", &targets.csv}}};
+    const std::array<std::pair<const char*, const std::string*>, 5> outputs{
+        {{"--gltf", &targets.gltf},
+         {"--obj", &targets.obj},
+         {"--dxf", &targets.dxf},
+         {"--csv", &targets.csv},
+         {"--measurements", &targets.measurements}}};
     bool any = false;
     for (const auto& [option, path] : outputs) {
       if (path->empty()) continue;
@@ -53,7 +61,7 @@ Command addExportCommand(CLI::App& plumb) {
       if (sameFile(*path, options->project))
         throw fileError(*path, std::string(option) + " would overwrite the project");
     }
-    if (!any) throw Error("nothing to export: give at least one of --gltf, --obj, --dxf, --csv");
+    if (!any) throw Error("nothing to export: give at least one of --gltf, --obj, --dxf, --csv, --measurements");
 
     const cad::Project project = cad::readProjectFile(options->project);
     // All or none: exportAll moves the outputs into place only once every one is complete.
@@ -61,10 +69,11 @@ Command addExportCommand(CLI::App& plumb) {
 
     std::size_t prisms = 0;
     for (const cad::Polygon& polygon : project.polygons) prisms += polygon.isPrism() ? 1u : 0u;
-    std::printf("read   %s: %s, %s, %s, %s, %s, %s\n", options->project.c_str(),
+    std::printf("read   %s: %s, %s, %s, %s, %s, %s, %s\n", options->project.c_str(),
                 count(project.segments.size(), "segment").c_str(), count(project.edges.size(), "edge").c_str(),
                 count(project.corners.size(), "corner").c_str(),
                 count(project.polygons.size() - prisms, "polygon").c_str(), count(prisms, "prism").c_str(),
+                count(project.measurements.size(), "measurement").c_str(),
                 count(project.groups.size(), "group").c_str());
     for (const std::string& path : written) {
       std::error_code ignored;

@@ -5,6 +5,7 @@
 //   Polygon                                written by SceneState's edits (the drawing tools' results)
 //   Corner (three selected segments)       written by SceneState::addCornerOfSelected
 //   Group, InGroup                         written by SceneState::groupSelected
+//   Measurement                            written by SceneState::addMeasurement (the Measure tool)
 //   Selection                              written by the segment list and the tools
 //   ToolState                              written by the palette and DrawingTools (one entity holds it)
 
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cad/project.h"
 #include "engine/ecs/entity.h"
 #include "reco/outline.h"
 #include "reco/plane.h"
@@ -67,6 +69,15 @@ struct Polygon {
   ecs::Entity plane = ecs::kNullEntity;  // the segment it was drawn on, or null
   std::string name;
   Eigen::Vector3d extrusion = Eigen::Vector3d::Zero();
+};
+
+// A measurement the Measure tool took (cad/measurement.h): its terms as they were when taken, and
+// the items they were taken on.
+struct Measurement {
+  cad::MeasureKind kind = cad::MeasureKind::kDistance;
+  std::vector<cad::MeasureTerm> terms;
+  std::vector<ecs::Entity> sources;  // one per term: a Segment, Edge, Corner or Polygon; null for a point of the cloud
+  std::string name;                  // "Distance 1", "Height 2", ...
 };
 
 // A named set of items; an item's InGroup names it.
@@ -135,13 +146,12 @@ struct DrawingState {
 
 struct ToolState {
   Tool active = Tool::kGrow;
-  // Measure: the first snapped point, until the second.
-  bool measure_started = false;
-  Eigen::Vector3d measure_from = Eigen::Vector3d::Zero();
-  Eigen::Vector3d measure_to = Eigen::Vector3d::Zero();
-  Snap::Kind measure_from_kind = Snap::Kind::kPoint;
-  Snap::Kind measure_to_kind = Snap::Kind::kPoint;
-  bool measure_done = false;
+  // Measure (ui/viewer/measure_tool.h): the kind being taken, the terms clicked so far and the
+  // items they came from, and what the tool last said (a result, or why a click took nothing).
+  cad::MeasureKind measure_kind = cad::MeasureKind::kDistance;
+  std::vector<cad::MeasureTerm> measure_terms;
+  std::vector<ecs::Entity> measure_sources;
+  std::string measure_message;
   // What the cursor snaps to now in a drawing tool (features only: a corner, an edge, a plane).
   std::optional<Snap> hover;
   DrawingState drawing;

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <unordered_map>
 
+#include "cad/measurement.h"
 #include "engine/ecs/registry.h"
 #include "ui/viewer/components.h"
 #include "ui/viewer/scene_state.h"
@@ -22,7 +23,8 @@ std::uint64_t numberAfter(const std::string& name, std::string_view prefix) {
 
 std::uint64_t documentVersion(const ecs::Registry& registry) {
   return registry.version<Segment>() + registry.version<Edge>() + registry.version<Corner>() +
-         registry.version<Polygon>() + registry.version<Group>() + registry.version<InGroup>();
+         registry.version<Polygon>() + registry.version<Measurement>() + registry.version<Group>() +
+         registry.version<InGroup>();
 }
 
 cad::Project projectOf(const ecs::Registry& registry, std::string cloud_path, std::optional<view::Camera> camera) {
@@ -71,6 +73,14 @@ cad::Project projectOf(const ecs::Registry& registry, std::string cloud_path, st
     project.polygons.push_back(
         {next++, polygon.name, groupOf(entity), idOf(polygon.plane), polygon.vertices, polygon.extrusion});
   });
+  // Last: a measurement names the items it was taken on (those since deleted are none).
+  registry.view<Measurement>().each([&](ecs::Entity entity, const Measurement& measurement) {
+    std::vector<cad::ItemId> sources;
+    for (const ecs::Entity source : measurement.sources) sources.push_back(idOf(source));
+    ids[entity.id()] = next;
+    project.measurements.push_back(
+        {next++, measurement.name, groupOf(entity), measurement.kind, measurement.terms, std::move(sources)});
+  });
   return project;
 }
 
@@ -82,12 +92,12 @@ void loadProject(const cad::Project& project, SceneState& scene) {
     const auto it = entities.find(id);
     return it == entities.end() ? ecs::kNullEntity : it->second;
   };
-  std::uint64_t segment_n = 0, polygon_n = 0, corner_n = 0, group_n = 0;
+  SceneState::NameCounters named;
   for (const cad::Group& group : project.groups) {
     const ecs::Entity entity = registry.create();
     registry.emplace(entity, Group{group.name});
     entities[group.id] = entity;
-    group_n = std::max(group_n, numberAfter(group.name, "Group "));
+    named.groups = std::max(named.groups, numberAfter(group.name, "Group "));
   }
   const auto join = [&](ecs::Entity entity, cad::ItemId group) {
     if (const ecs::Entity g = entityOf(group); g != ecs::kNullEntity) registry.emplace(entity, InGroup{g});
@@ -105,7 +115,7 @@ void loadProject(const cad::Project& project, SceneState& scene) {
     registry.emplace(entity, std::move(segment));
     join(entity, in.group);
     entities[in.id] = entity;
-    segment_n = std::max(segment_n, numberAfter(in.name, "Segment "));
+    named.segments = std::max(named.segments, numberAfter(in.name, "Segment "));
   }
   for (const cad::Edge& in : project.edges) {
     const ecs::Entity entity = registry.create();
@@ -127,16 +137,26 @@ void loadProject(const cad::Project& project, SceneState& scene) {
     registry.emplace(entity, SnapCandidate{SnapCandidate::Kind::kCorner, in.position, entity});
     join(entity, in.group);
     entities[in.id] = entity;
-    corner_n = std::max(corner_n, numberAfter(in.name, "Corner "));
+    named.corners = std::max(named.corners, numberAfter(in.name, "Corner "));
   }
   for (const cad::Polygon& in : project.polygons) {
     const ecs::Entity entity = registry.create();
     registry.emplace(entity, Polygon{in.vertices, entityOf(in.plane), in.name, in.extrusion});
     join(entity, in.group);
     entities[in.id] = entity;
-    polygon_n = std::max(polygon_n, numberAfter(in.name, "Polygon "));
+    named.polygons = std::max(named.polygons, numberAfter(in.name, "Polygon "));
   }
-  scene.setNameCounters(segment_n, polygon_n, corner_n, group_n);
+  for (const cad::Measurement& in : project.measurements) {
+    const ecs::Entity entity = registry.create();
+    std::vector<ecs::Entity> sources;
+    for (const cad::ItemId source : in.sources) sources.push_back(entityOf(source));
+    registry.emplace(entity, Measurement{in.kind, in.terms, std::move(sources), in.name});
+    join(entity, in.group);
+    entities[in.id] = entity;
+    named.measurements =
+        std::max(named.measurements, numberAfter(in.name, std::string(cad::measureKindTitle(in.kind)) + " "));
+  }
+  scene.setNameCounters(named);
 }
 
 }  // namespace plumb::viewer

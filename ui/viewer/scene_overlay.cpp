@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <array>
 
+#include "cad/measurement.h"
 #include "cad/polygon_mesh.h"
 #include "engine/ecs/registry.h"
 #include "ui/viewer/components.h"
@@ -11,8 +12,9 @@ namespace plumb::viewer {
 namespace {
 
 constexpr render::Rgba kPolygonRim{255, 255, 255, 255};
-constexpr render::Rgba kDrawing{80, 255, 120, 255};  // what a tool is drawing, the measurement
-constexpr render::Rgba kArrow{255, 120, 255, 255};   // the direction
+constexpr render::Rgba kDrawing{80, 255, 120, 255};      // what a tool is drawing, a measurement's terms
+constexpr render::Rgba kMeasurement{255, 200, 40, 255};  // measurements' dimension lines
+constexpr render::Rgba kArrow{255, 120, 255, 255};       // the direction
 
 // A polygon, or a prism when `extrusion` is non-zero: its faces filled, its sides drawn.
 void addPolygon(render::OverlayScene& overlay, const std::vector<Eigen::Vector3d>& ring,
@@ -116,7 +118,7 @@ render::Rgba segmentColour(std::uint32_t index, std::uint8_t alpha) {
 std::shared_ptr<const render::OverlayScene> SceneOverlay::update(const ecs::Registry& registry) {
   const std::uint64_t versions = registry.version<Segment>() + registry.version<Edge>() + registry.version<Corner>() +
                                  registry.version<ToolState>() + registry.version<Selection>() +
-                                 registry.version<Polygon>();
+                                 registry.version<Polygon>() + registry.version<Measurement>();
   if (overlay_ && versions == seen_) return overlay_;
   seen_ = versions;
   auto overlay = std::make_shared<render::OverlayScene>();
@@ -153,14 +155,22 @@ std::shared_ptr<const render::OverlayScene> SceneOverlay::update(const ecs::Regi
                selected ? render::Rgba{255, 255, 255, 110} : render::Rgba{200, 200, 255, 70}, kPolygonRim,
                selected ? 3.0f : 2.0f);
   });
+  // Each measurement's dimension line, its ends marked (its value is labelled by the palette).
+  registry.view<Measurement>().each([&](ecs::Entity entity, const Measurement& measurement) {
+    const cad::MeasureValue value = cad::measure(measurement.kind, measurement.terms);
+    const bool selected = registry.has<Selection>(entity);
+    const render::Rgba colour = selected ? render::Rgba{255, 255, 255, 255} : kMeasurement;
+    overlay->markers.push_back({value.from, colour, 8.0f, true});
+    if (value.to != value.from) {
+      overlay->markers.push_back({value.to, colour, 8.0f, true});
+      overlay->lines.push_back({value.from, value.to, colour, selected ? 3.5f : 2.5f, true});
+    }
+  });
   registry.view<ToolState>().each([&](ecs::Entity, const ToolState& tool) {
     addDrawing(*overlay, registry, tool);
-    if (tool.measure_started || tool.measure_done) {
-      overlay->markers.push_back({tool.measure_from, {80, 255, 120, 255}, 9.0f, true});
-    }
-    if (tool.measure_done) {
-      overlay->markers.push_back({tool.measure_to, {80, 255, 120, 255}, 9.0f, true});
-      overlay->lines.push_back({tool.measure_from, tool.measure_to, {80, 255, 120, 255}, 2.5f, true});
+    if (tool.active == Tool::kMeasure) {
+      for (const cad::MeasureTerm& term : tool.measure_terms)
+        overlay->markers.push_back({term.point, kDrawing, 9.0f, true});
     }
     if (tool.hover) {
       // What the cursor snaps to: yellow for a corner, white for an edge, cyan for a plane.

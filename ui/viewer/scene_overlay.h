@@ -1,7 +1,7 @@
 #pragma once
 // What the renderer's overlay pass draws of the scene: segment polygons (translucent, in a
 // colour per segment; brighter while growing), their outlines, edges as lines, corners as
-// markers, the measurement. Rebuilt only when a component type it reads has changed.
+// markers, measurements' dimension lines. Rebuilt only when a component type it reads has changed.
 
 #include <cstdint>
 #include <memory>

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
+#include "cad/measurement.h"
 #include "reco/edges_and_corners.h"
 #include "ui/viewer/grow_session.h"
 
@@ -78,7 +79,7 @@ void SceneState::applyGrow(const GrowUpdate& update) {
     Segment segment;
     takeGrownGeometry(segment, snapshot, update.grow);
     segment.growing = !keep;
-    if (keep) segment.name = "Segment " + std::to_string(++segments_named_);
+    if (keep) segment.name = "Segment " + std::to_string(++named_.segments);
     registry_.emplace(entity, std::move(segment));
     segment_entities.push_back(entity);
     created.push_back(entity);
@@ -264,10 +265,11 @@ std::size_t SceneState::deleteSelected() {
     }
   });
   const auto kind = [&](ecs::Entity e) {
-    return registry.has<Segment>(e)   ? "segment"
-           : registry.has<Polygon>(e) ? "polygon"
-           : registry.has<Group>(e)   ? "group"
-                                      : "item";
+    return registry.has<Segment>(e)       ? "segment"
+           : registry.has<Polygon>(e)     ? "polygon"
+           : registry.has<Group>(e)       ? "group"
+           : registry.has<Measurement>(e) ? "measurement"
+                                          : "item";
   };
   ecs::EditScope edit(history_, selected.size() == 1 ? std::string("Delete ") + kind(selected.front())
                                                      : "Delete " + std::to_string(selected.size()) + " items");
@@ -293,7 +295,7 @@ ecs::Entity SceneState::addPolygon(std::vector<Eigen::Vector3d> ring, ecs::Entit
   ecs::EditScope edit(history_, "Polygon");
   const ecs::Entity entity = registry_.create();
   registry_.emplace(
-      entity, Polygon{std::move(ring), plane, "Polygon " + std::to_string(++polygons_named_), Eigen::Vector3d::Zero()});
+      entity, Polygon{std::move(ring), plane, "Polygon " + std::to_string(++named_.polygons), Eigen::Vector3d::Zero()});
   return entity;
 }
 
@@ -318,7 +320,7 @@ std::vector<ecs::Entity> SceneState::copyPolygons(ecs::Entity polygon, const std
 ecs::Entity SceneState::addCopy(ecs::Entity polygon, const Eigen::Vector3d& offset) {
   Polygon copy = registry_.get<Polygon>(polygon);
   translate(copy, offset);
-  copy.name = "Polygon " + std::to_string(++polygons_named_);
+  copy.name = "Polygon " + std::to_string(++named_.polygons);
   const ecs::Entity entity = registry_.create();
   registry_.emplace(entity, std::move(copy));
   if (const InGroup* group = registry_.tryGet<InGroup>(polygon)) registry_.emplace(entity, *group);
@@ -359,8 +361,18 @@ std::variant<ecs::Entity, std::string> SceneState::addCornerOfSelected() {
   registry_.emplace(entity, Corner{{segments[0], segments[1], segments[2]},
                                    *position,
                                    {a.lambda2, b.lambda2, c.lambda2},
-                                   "Corner " + std::to_string(++corners_named_)});
+                                   "Corner " + std::to_string(++named_.corners)});
   registry_.emplace(entity, SnapCandidate{SnapCandidate::Kind::kCorner, *position, entity});
+  return entity;
+}
+
+ecs::Entity SceneState::addMeasurement(cad::MeasureKind kind, std::vector<cad::MeasureTerm> terms,
+                                       std::vector<ecs::Entity> sources) {
+  ecs::EditScope edit(history_, "Measure");
+  const ecs::Entity entity = registry_.create();
+  registry_.emplace(
+      entity, Measurement{kind, std::move(terms), std::move(sources),
+                          std::string(cad::measureKindTitle(kind)) + " " + std::to_string(++named_.measurements)});
   return entity;
 }
 
@@ -369,6 +381,9 @@ void SceneState::rename(ecs::Entity entity, std::string name) {
   if (registry_.has<Segment>(entity)) registry_.patch<Segment>(entity, [&](Segment& s) { s.name = name; });
   if (registry_.has<Polygon>(entity)) registry_.patch<Polygon>(entity, [&](Polygon& p) { p.name = name; });
   if (registry_.has<Corner>(entity)) registry_.patch<Corner>(entity, [&](Corner& c) { c.name = name; });
+  if (registry_.has<Measurement>(entity)) {
+    registry_.patch<Measurement>(entity, [&](Measurement& m) { m.name = name; });
+  }
   if (registry_.has<Group>(entity)) registry_.patch<Group>(entity, [&](Group& g) { g.name = name; });
 }
 
@@ -377,7 +392,7 @@ ecs::Entity SceneState::groupSelected() {
   if (items.empty()) return ecs::kNullEntity;
   ecs::EditScope edit(history_, "Group");
   const ecs::Entity group = registry_.create();
-  registry_.emplace(group, Group{"Group " + std::to_string(++groups_named_)});
+  registry_.emplace(group, Group{"Group " + std::to_string(++named_.groups)});
   for (const ecs::Entity item : items) {
     if (!registry_.has<Group>(item)) registry_.emplaceOrReplace(item, InGroup{group});
   }
@@ -422,25 +437,22 @@ void SceneState::clear() {
   registry_.view<Edge>().each(collect);
   registry_.view<Corner>().each(collect);
   registry_.view<Polygon>().each(collect);
+  registry_.view<Measurement>().each(collect);
   registry_.view<Group>().each(collect);
   registry_.view<SnapCandidate>().each(collect);
   for (const ecs::Entity entity : items) {
     if (registry_.alive(entity)) registry_.destroy(entity);
   }
-  segments_named_ = polygons_named_ = corners_named_ = groups_named_ = 0;
+  named_ = {};
 }
 
-void SceneState::setNameCounters(std::uint64_t segments, std::uint64_t polygons, std::uint64_t corners,
-                                 std::uint64_t groups) {
-  segments_named_ = segments;
-  polygons_named_ = polygons;
-  corners_named_ = corners;
-  groups_named_ = groups;
+void SceneState::setNameCounters(const NameCounters& counters) {
+  named_ = counters;
 }
 
 std::string SceneState::toJson() const {
-  // Items are numbered in the dump from 1, segments first, then edges, corners, polygons and
-  // groups, each in the scene's order: entity ids would not do, as live grow snapshots consume
+  // Items are numbered in the dump from 1, segments first, then edges, corners, polygons, groups
+  // and measurements, each in the scene's order: entity ids would not do, as live grow snapshots consume
   // them in numbers that follow the machine's speed, and a replay must dump the same scene.
   std::unordered_map<ecs::Entity, std::uint64_t> numbers;
   const auto number = [&](ecs::Entity entity) { numbers.emplace(entity, numbers.size() + 1); };
@@ -449,6 +461,7 @@ std::string SceneState::toJson() const {
   registry_.view<Corner>().each([&](ecs::Entity entity, const Corner&) { number(entity); });
   registry_.view<Polygon>().each([&](ecs::Entity entity, const Polygon&) { number(entity); });
   registry_.view<Group>().each([&](ecs::Entity entity, const Group&) { number(entity); });
+  registry_.view<Measurement>().each([&](ecs::Entity entity, const Measurement&) { number(entity); });
   const auto id = [&](ecs::Entity entity) -> nlohmann::json {
     const auto it = numbers.find(entity);
     return it != numbers.end() ? nlohmann::json(it->second) : nlohmann::json(nullptr);
@@ -492,13 +505,12 @@ std::string SceneState::toJson() const {
   registry_.view<Polygon>().each([&](ecs::Entity entity, const Polygon& polygon) {
     nlohmann::json vertices = nlohmann::json::array();
     for (const Eigen::Vector3d& vertex : polygon.vertices) vertices.push_back(vector3(vertex));
-    polygons.push_back(
-        {{"id", id(entity)},
-         {"name", polygon.name},
-         {"plane", id(polygon.plane)},
-         {"vertices", vertices},
-         {"extrusion", vector3(polygon.extrusion)},
-         {"group", group_of(entity)}});
+    polygons.push_back({{"id", id(entity)},
+                        {"name", polygon.name},
+                        {"plane", id(polygon.plane)},
+                        {"vertices", vertices},
+                        {"extrusion", vector3(polygon.extrusion)},
+                        {"group", group_of(entity)}});
   });
   nlohmann::json groups = nlohmann::json::array();
   registry_.view<Group>().each([&](ecs::Entity entity, const Group& group) {
@@ -508,21 +520,31 @@ std::string SceneState::toJson() const {
     });
     groups.push_back({{"id", id(entity)}, {"name", group.name}, {"members", members}});
   });
-  const ToolState& tool = registry_.get<ToolState>(tool_);
-  nlohmann::json measure = nullptr;
-  if (tool.measure_done) {
-    measure = {{"from", vector3(tool.measure_from)},
-               {"to", vector3(tool.measure_to)},
-               {"from_kind", snapKindName(tool.measure_from_kind)},
-               {"to_kind", snapKindName(tool.measure_to_kind)},
-               {"distance_m", (tool.measure_to - tool.measure_from).norm()}};
-  }
+  nlohmann::json measurements = nlohmann::json::array();
+  registry_.view<Measurement>().each([&](ecs::Entity entity, const Measurement& measurement) {
+    const cad::MeasureValue value = cad::measure(measurement.kind, measurement.terms);
+    nlohmann::json terms = nlohmann::json::array(), sources = nlohmann::json::array();
+    for (const cad::MeasureTerm& term : measurement.terms) terms.push_back(cad::measureTermKindName(term.kind));
+    for (const ecs::Entity source : measurement.sources) sources.push_back(id(source));
+    measurements.push_back({{"id", id(entity)},
+                            {"name", measurement.name},
+                            {"kind", cad::measureKindName(measurement.kind)},
+                            {"value", value.value},
+                            {"unit", cad::measureUnit(measurement.kind)},
+                            {"second", value.second ? nlohmann::json(*value.second) : nlohmann::json(nullptr)},
+                            {"text", cad::measureText(measurement.kind, value)},
+                            {"from", vector3(value.from)},
+                            {"to", vector3(value.to)},
+                            {"terms", terms},
+                            {"sources", sources},
+                            {"group", group_of(entity)}});
+  });
   const nlohmann::json scene{{"segments", segments},
                              {"edges", edges},
                              {"corners", corners},
                              {"polygons", polygons},
                              {"groups", groups},
-                             {"measure", measure},
+                             {"measurements", measurements},
                              {"undo", history_.canUndo() ? history_.undoName() : std::string_view()}};
   return scene.dump(2) + "\n";
 }

@@ -60,7 +60,11 @@ class SceneState {
   // shadow), as a Corner and its SnapCandidate; or why there is none (not three segments
   // selected, two of them near parallel, one corner of them exists already).
   std::variant<ecs::Entity, std::string> addCornerOfSelected();
-  // "Rename": a Segment's, Polygon's or Group's name.
+  // "Measure": a measurement of `kind` on `terms` (measureProblem finds nothing: the Measure tool
+  // checks), taken on `sources` (one per term, null for none), named "<Kind> N".
+  ecs::Entity addMeasurement(cad::MeasureKind kind, std::vector<cad::MeasureTerm> terms,
+                             std::vector<ecs::Entity> sources);
+  // "Rename": a Segment's, Polygon's, Corner's, Measurement's or Group's name.
   void rename(ecs::Entity entity, std::string name);
   // "Group": a new Group, "Group N", holding the selected items (leaving any group they were in).
   // Null when nothing is selected.
@@ -76,9 +80,12 @@ class SceneState {
 
   // Forgets every item and the history (a project is opened).
   void clear();
-  // Continues the "Segment N", "Polygon N", "Corner N", "Group N" numbering after these counts
-  // (a project's items).
-  void setNameCounters(std::uint64_t segments, std::uint64_t polygons, std::uint64_t corners, std::uint64_t groups);
+  // Continues the "Segment N", "Polygon N", "Corner N", "Group N" and measurements' "<Kind> N"
+  // numbering after these counts (a project's items).
+  struct NameCounters {
+    std::uint64_t segments = 0, polygons = 0, corners = 0, groups = 0, measurements = 0;
+  };
+  void setNameCounters(const NameCounters& counters);
 
   ecs::Registry& registry() { return registry_; }
   const ecs::Registry& registry() const { return registry_; }
@@ -87,7 +94,8 @@ class SceneState {
   ecs::Entity toolEntity() const { return tool_; }
   const ToolState& tool() const { return registry_.get<ToolState>(tool_); }
 
-  // The scene as JSON (plumb view --dump-scene; docs/user-guide.md): segments, edges, corners.
+  // The scene as JSON (plumb view --dump-scene; docs/user-guide.md): segments, edges, corners,
+  // polygons, groups, measurements.
   std::string toJson() const;
 
  private:
@@ -104,12 +112,9 @@ class SceneState {
   ecs::Registry registry_;
   ecs::History history_;
   ecs::Entity tool_;
-  std::uint64_t live_grow_ = 0;       // the grow the live entities belong to (0: none)
-  std::vector<ecs::Entity> live_;     // its segments, edges, corners, snap candidates
-  std::uint64_t segments_named_ = 0;  // for "Segment N" names
-  std::uint64_t polygons_named_ = 0;  // "Polygon N"
-  std::uint64_t corners_named_ = 0;   // "Corner N"
-  std::uint64_t groups_named_ = 0;    // "Group N"
+  std::uint64_t live_grow_ = 0;    // the grow the live entities belong to (0: none)
+  std::vector<ecs::Entity> live_;  // its segments, edges, corners, snap candidates
+  NameCounters named_;             // the N of the last "Segment N", "Polygon N", ... given
 };
 
 }  // namespace plumb::viewer

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "cad/measurement.h"
 #include "engine/core/error.h"
 
 namespace plumb::viewer {
@@ -200,6 +201,14 @@ class StepParser {
       const auto it = std::find_if(kTools.begin(), kTools.end(), [&](const auto& t) { return name == t.first; });
       if (it == kTools.end()) fail("unknown tool '" + name + "' (navigate, grow, measure, polygon, move or extrude)");
       out.tool = it->second;
+    } else if (step_.contains("measure")) {
+      const std::string name = step_.at("measure").is_string() ? step_.at("measure").get<std::string>() : "";
+      const std::optional<cad::MeasureKind> kind = cad::measureKindNamed(name);
+      if (!kind) {
+        fail("unknown measure '" + name + "' (distance, angle, point_to_plane, between_planes, height or area)");
+      }
+      out.kind = ScriptStep::Kind::kMeasure;
+      out.measure = *kind;
     } else if (step_.contains("grow_detail")) {
       const std::string name = step_.at("grow_detail").is_string() ? step_.at("grow_detail").get<std::string>() : "";
       // In the Grow panel's order (GrowPanel::detail).
@@ -324,6 +333,10 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
         return frame;
       case ScriptStep::Kind::kTool:
         frame.tool = step.tool;
+        done();
+        continue;
+      case ScriptStep::Kind::kMeasure:
+        frame.measure = step.measure;
         done();
         continue;
       case ScriptStep::Kind::kGrowDetail:

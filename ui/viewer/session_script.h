@@ -17,6 +17,8 @@
 //   {"type": "1.25"}                       text, a key and its character per frame
 //   {"tool": "grow"}                       choose a tool (navigate, grow, measure, polygon, move,
 //                                          extrude)
+//   {"measure": "height"}                  the Measure tool, taking this kind (distance, angle,
+//                                          point_to_plane, between_planes, height, area)
 //   {"grow_detail": "medium"}              the Grow panel's Detail (view, view-paper, low, medium,
 //                                          high, full)
 //   {"colour": "scan"}                     the View panel's Colour (auto, rgb, intensity,
@@ -50,6 +52,7 @@ struct ScriptStep {
     kMoveWorld,   // `world`
     kLook,        // `world` (the eye), `target`
     kTool,        // `tool`
+    kMeasure,     // `measure`: the Measure tool with this kind
     kGrowDetail,  // `count`: the Grow panel's Detail entry (GrowPanel::detail)
     kColour,      // `count`: the View panel's Colour, a render::ColourMode
     kWaitFrames,  // `count`
@@ -65,6 +68,7 @@ struct ScriptStep {
   Eigen::Vector3d world = Eigen::Vector3d::Zero();
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   Tool tool = Tool::kGrow;
+  cad::MeasureKind measure = cad::MeasureKind::kDistance;
   std::uint64_t count = 0;
   double ms = 0.0;
   double timeout_s = 60.0;
@@ -80,9 +84,10 @@ std::vector<ScriptStep> readSessionScript(const std::string& path);
 struct ScriptFrame {
   std::vector<InputEvent> events;
   std::optional<Tool> tool;
-  std::optional<int> grow_detail;         // the Grow panel's Detail entry
-  std::optional<int> colour;              // the View panel's Colour, a render::ColourMode
-  std::optional<std::string> screenshot;  // file name
+  std::optional<cad::MeasureKind> measure;  // the Measure tool, taking this kind
+  std::optional<int> grow_detail;           // the Grow panel's Detail entry
+  std::optional<int> colour;                // the View panel's Colour, a render::ColourMode
+  std::optional<std::string> screenshot;    // file name
   std::optional<std::pair<int, int>> resize;
   std::optional<std::string> memory;                                // print a memory report with this label
   std::optional<Eigen::Vector3d> click_world;                       // the viewer turns it into a click at its pixel

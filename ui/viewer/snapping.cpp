@@ -78,19 +78,22 @@ std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera
       best = Snap{kind, position, entity, distance};
     }
   };
-  registry.view<Corner>().each(
-      [&](ecs::Entity entity, const Corner& corner) { consider(Snap::Kind::kCorner, corner.position, entity); });
-  registry.view<Polygon>().each([&](ecs::Entity entity, const Polygon& polygon) {
-    for (const Eigen::Vector3d& vertex : polygon.vertices) {
-      consider(Snap::Kind::kVertex, vertex, entity);
-      if (!polygon.extrusion.isZero(0.0)) consider(Snap::Kind::kVertex, vertex + polygon.extrusion, entity);
-    }
-  });
+  if (options.corners) {
+    registry.view<Corner>().each(
+        [&](ecs::Entity entity, const Corner& corner) { consider(Snap::Kind::kCorner, corner.position, entity); });
+    registry.view<Polygon>().each([&](ecs::Entity entity, const Polygon& polygon) {
+      for (const Eigen::Vector3d& vertex : polygon.vertices) {
+        consider(Snap::Kind::kVertex, vertex, entity);
+        if (!polygon.extrusion.isZero(0.0)) consider(Snap::Kind::kVertex, vertex + polygon.extrusion, entity);
+      }
+    });
+  }
   if (best) return best;
 
   // 2. Edges within their support range: the point of the edge nearest the cursor's ray.
   const view::Ray ray = view::rayThroughPixel(camera, x_px, y_px);
   registry.view<Edge>().each([&](ecs::Entity entity, const Edge& edge) {
+    if (!options.edges) return;
     const std::optional<Eigen::Vector2d> a = view::pixelOf(camera, edge.start), b = view::pixelOf(camera, edge.end);
     if (!a || !b) return;
     const double t = nearestFraction(*a, *b, cursor);
@@ -106,7 +109,7 @@ std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera
   // 3. Planes: the nearest hit of the ray on a segment's plane inside its outline.
   double nearest_hit = std::numeric_limits<double>::infinity();
   registry.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
-    if (!segment.outline || !segment.plane.valid) return;
+    if (!options.planes || !segment.outline || !segment.plane.valid) return;
     const double facing = segment.plane.normal.dot(ray.direction);
     if (std::abs(facing) < 1e-9) return;
     const double t = segment.plane.normal.dot(segment.plane.centroid - ray.origin) / facing;

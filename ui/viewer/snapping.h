@@ -30,6 +30,11 @@ const char* snapKindName(Snap::Kind kind);
 
 struct SnapOptions {
   double radius_px = 12.0;  // corners and edges snap within this many pixels of the cursor
+  // What may be snapped to (the cloud's points: when a picker is given). Measuring the distance to
+  // a plane wants the plane, not the edge beside the cursor.
+  bool corners = true;  // corners and polygon vertices
+  bool edges = true;
+  bool planes = true;
 };
 
 // The cloud's point under a pixel, if any (the renderer's pick); may be empty.

@@ -201,20 +201,21 @@ void Viewer::reportMemory(const std::string& label) const {
   std::fflush(stdout);
 }
 
-// glTF, OBJ, DXF and CSV beside the project: "<project without .plumbproj>.glb", ...
+// glTF, OBJ, DXF and the CSVs beside the project: "<project without .plumbproj>.glb", ...
 void Viewer::exportProject() {
   std::filesystem::path stem = project_.path();
   if (stem.extension() == ".plumbproj") stem.replace_extension();
   const cad::ExportTargets targets{.gltf = stem.string() + ".glb",
                                    .obj = stem.string() + ".obj",
                                    .dxf = stem.string() + ".dxf",
-                                   .csv = stem.string() + "-corners.csv"};
+                                   .csv = stem.string() + "-corners.csv",
+                                   .measurements = stem.string() + "-measurements.csv"};
   // Never over the cloud itself (a scan may be an OBJ or a CSV) or the project.
   const auto same = [](const std::string& a, const std::string& b) {
     std::error_code error;
     return !b.empty() && std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
   };
-  for (const std::string& target : {targets.gltf, targets.obj, targets.dxf, targets.csv}) {
+  for (const std::string& target : {targets.gltf, targets.obj, targets.dxf, targets.csv, targets.measurements}) {
     if (same(target, options_.cloud) || same(target, project_.path())) {
       project_message_ = "not exported: " + target + " is the cloud or the project itself";
       std::printf("plumb view: %s\n", project_message_.c_str());
@@ -390,6 +391,10 @@ int Viewer::run() {
       if (frame.finished) break;
       events.insert(events.end(), frame.events.begin(), frame.events.end());
       if (frame.tool) setTool(*frame.tool);
+      if (frame.measure) {
+        setTool(Tool::kMeasure);
+        measure_.setKind(*frame.measure);
+      }
       if (frame.grow_detail) grow_panel_.detail = *frame.grow_detail;
       if (frame.colour) settings_.colour = static_cast<render::ColourMode>(*frame.colour);
       if (frame.resize) window_.resize(frame.resize->first, frame.resize->second);
@@ -570,6 +575,7 @@ void Viewer::handleViewEvent(const InputEvent& event) {
     if (event.key == GLFW_KEY_ESCAPE) {
       if (cloud_ && cloud_->grow) cloud_->grow->cancel();
       drawing_.escape();
+      measure_.escape();
       return;
     }
     if (!control) {
@@ -715,22 +721,7 @@ void Viewer::click(double x_px, double y_px) {
     if (picked) startGrow(*picked);  // nothing on the background
     return;
   }
-  // Measure: from corner, edge, plane or point to another, snapped.
-  const std::optional<Snap> snap = snapCursor(scene_.registry(), cloud_->navigator->camera(), x_px, y_px,
-                                              [this](double x, double y) { return pickAt(x, y); });
-  if (!snap) return;
-  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
-    if (!state.measure_started || state.measure_done) {
-      state.measure_started = true;
-      state.measure_done = false;
-      state.measure_from = snap->position;
-      state.measure_from_kind = snap->kind;
-    } else {
-      state.measure_to = snap->position;
-      state.measure_to_kind = snap->kind;
-      state.measure_done = true;
-    }
-  });
+  measure_.click(cloud_->navigator->camera(), x_px, y_px, [this](double x, double y) { return pickAt(x, y); });
 }
 
 // In the Measure and drawing tools, what the cursor would snap to (features only: no readback
@@ -740,7 +731,9 @@ void Viewer::updateHover() {
   const Tool tool = scene_.tool().active;
   if (cloud_ && (tool == Tool::kMeasure || isDrawingTool(tool)) && !imgui_.wantsMouse()) {
     const Pointer pointer = pointerAt(mouse_x_ * renderScale(), mouse_y_ * renderScale(), false);
-    hover = pointer.snap;
+    hover = tool == Tool::kMeasure ? snapCursor(scene_.registry(), cloud_->navigator->camera(), pointer.pixel.x(),
+                                                pointer.pixel.y(), nullptr, MeasureTool::snapOptionsFor(scene_.tool()))
+                                   : pointer.snap;
     if (isDrawingTool(tool)) {
       drawing_.hover(pointer, cloud_->navigator->camera());
       hovered_px_ = pointer.pixel;
@@ -797,7 +790,11 @@ void Viewer::setTool(Tool tool) {
   drawing_.reset();
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
     state.active = tool;
-    if (tool != Tool::kMeasure) state.measure_started = state.measure_done = false;
+    if (tool != Tool::kMeasure) {
+      state.measure_terms.clear();
+      state.measure_sources.clear();
+      state.measure_message.clear();
+    }
     state.hover.reset();
   });
 }

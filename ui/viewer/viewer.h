@@ -22,6 +22,7 @@
 #include "ui/viewer/drawing_tools.h"
 #include "ui/viewer/grow_session.h"
 #include "ui/viewer/imgui_layer.h"
+#include "ui/viewer/measure_tool.h"
 #include "ui/viewer/navigation.h"
 #include "ui/viewer/project_session.h"
 #include "ui/viewer/scene_overlay.h"
@@ -121,6 +122,8 @@ class Viewer {
   void drawDrawingToolState();
   void drawGrowPanel();
   void drawSegmentsPanel();
+  void drawMeasureToolState();
+  void drawMeasurementLabels();
   void drawViewPanel();
   void drawScanLegend();
   void drawSectionControls();
@@ -144,6 +147,7 @@ class Viewer {
   jobs::JobSystem jobs_;  // before the cloud: the cache waits for loads the jobs run
   SceneState scene_;
   DrawingTools drawing_{scene_};
+  MeasureTool measure_{scene_};
   SceneOverlay overlay_;
   std::unique_ptr<LoadedCloud> cloud_;
   std::shared_ptr<LoadProgress> load_progress_ = std::make_shared<LoadProgress>();

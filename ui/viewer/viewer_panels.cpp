@@ -13,9 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "cad/measurement.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/render/palette.h"
+#include "engine/view/camera_controls.h"
 #include "ui/viewer/project_bridge.h"
 #include "ui/viewer/viewer.h"
 
@@ -54,6 +56,7 @@ void Viewer::drawPanels() {
   drawToolsPanel();
   drawGrowPanel();
   drawSegmentsPanel();
+  drawMeasurementLabels();
   drawViewPanel();
   drawProjectPanel();
   drawStatusBar();
@@ -71,7 +74,7 @@ void Viewer::drawProjectPanel() {
       "--autosave-s says otherwise)");
   ImGui::SameLine();
   if (ImGui::Button("Export")) exportProject();
-  tooltip("Write glTF (.glb), OBJ, DXF and a CSV of the corners beside the project (Ctrl+E)");
+  tooltip("Write glTF (.glb), OBJ, DXF and CSVs of the corners and the measurements beside the project (Ctrl+E)");
   if (!project_message_.empty()) ImGui::TextWrapped("%s", project_message_.c_str());
   endInColumn(true);
 }
@@ -88,7 +91,8 @@ void Viewer::drawToolsPanel() {
   static constexpr Entry kTools[] = {
       {Tool::kNavigate, "Navigate", "Orbit, pan, zoom; a click selects a segment or polygon, Ctrl+click adds (N)"},
       {Tool::kGrow, "Grow", "Click a surface: the planes around it grow at the detail the view shows (G)"},
-      {Tool::kMeasure, "Measure", "Click two points: their distance (M)"},
+      {Tool::kMeasure, "Measure",
+       "Distances, angles, heights, a room's width, areas: choose the kind, then click what it asks for (M)"},
       {Tool::kPolygon, "Polygon",
        "Click snapped vertices; the first again, or Enter, closes. R: a rectangle from three points (P)"},
       {Tool::kMove, "Move/Copy",
@@ -128,17 +132,69 @@ void Viewer::drawToolsPanel() {
   if (tool.active == Tool::kPolygon || tool.active == Tool::kMove || tool.active == Tool::kExtrude) {
     drawDrawingToolState();
   }
-  if (tool.active == Tool::kMeasure) {
-    if (tool.measure_done) {
-      ImGui::Text("Distance %.4f m (%s to %s)", (tool.measure_to - tool.measure_from).norm(),
-                  snapKindName(tool.measure_from_kind), snapKindName(tool.measure_to_kind));
-    } else {
-      ImGui::TextUnformatted(tool.measure_started ? "Click the second point" : "Click the first point");
-    }
-    ImGui::TextDisabled("snaps to corners, edges, planes, points");
-    if (tool.hover) ImGui::Text("under the cursor: %s", snapKindName(tool.hover->kind));
-  }
+  if (tool.active == Tool::kMeasure) drawMeasureToolState();
   endInColumn(false);
+}
+
+// The Measure tool's kinds, the next step and what it last measured.
+void Viewer::drawMeasureToolState() {
+  const ToolState& tool = scene_.tool();
+  struct Entry {
+    cad::MeasureKind kind;
+    const char* help;
+  };
+  static constexpr Entry kKinds[] = {
+      {cad::MeasureKind::kDistance, "From a corner, an edge, a plane or a point to another"},
+      {cad::MeasureKind::kAngle, "Between two planes or edges, 0 to 90 degrees"},
+      {cad::MeasureKind::kPointToPlane, "A plane, then points: each one's distance to it"},
+      {cad::MeasureKind::kBetweenPlanes, "Two parallel planes (within 5 degrees): a room's width, a wall's thickness"},
+      {cad::MeasureKind::kHeight, "A floor, then points: each one's height above it, vertically"},
+      {cad::MeasureKind::kArea, "A drawn polygon: its area and perimeter"},
+  };
+  for (std::size_t i = 0; i < std::size(kKinds); ++i) {
+    if (i % 3 != 0) ImGui::SameLine();
+    if (ImGui::RadioButton(cad::measureKindTitle(kKinds[i].kind), tool.measure_kind == kKinds[i].kind)) {
+      measure_.setKind(kKinds[i].kind);
+    }
+    tooltip(kKinds[i].help);
+  }
+  ImGui::TextUnformatted(MeasureTool::prompt(tool).c_str());
+  if (!tool.measure_message.empty()) ImGui::TextWrapped("%s", tool.measure_message.c_str());
+  if (tool.hover) ImGui::Text("under the cursor: %s", snapKindName(tool.hover->kind));
+}
+
+// Each measurement's value beside the middle of its dimension line, in the view; a label that
+// would cover one placed before it moves down below it (a height and the room's height between
+// floor and ceiling are often taken on one vertical).
+void Viewer::drawMeasurementLabels() {
+  if (!cloud_) return;
+  const view::Camera& camera = cloud_->navigator->camera();
+  const double scale = renderScale();
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  std::vector<std::pair<ImVec2, ImVec2>> placed;  // the labels' boxes so far
+  const auto overlaps = [&](const ImVec2& min, const ImVec2& max) {
+    return std::any_of(placed.begin(), placed.end(), [&](const auto& box) {
+      return min.x < box.second.x && box.first.x < max.x && min.y < box.second.y && box.first.y < max.y;
+    });
+  };
+  scene_.registry().view<Measurement>().each([&](ecs::Entity entity, const Measurement& measurement) {
+    const cad::MeasureValue value = cad::measure(measurement.kind, measurement.terms);
+    const std::optional<Eigen::Vector2d> pixel = view::pixelOf(camera, 0.5 * (value.from + value.to));
+    if (!pixel) return;
+    const std::string text = measurement.name + "  " + cad::measureText(measurement.kind, value);
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    ImVec2 min(static_cast<float>(pixel->x() / scale) + 6.0f, static_cast<float>(pixel->y() / scale) - size.y - 4.0f);
+    ImVec2 max(min.x + size.x + 6.0f, min.y + size.y + 4.0f);
+    for (int tries = 0; tries < 8 && overlaps(min, max); ++tries) {
+      min.y += size.y + 6.0f;
+      max.y += size.y + 6.0f;
+    }
+    placed.emplace_back(min, max);
+    const bool selected = scene_.registry().has<Selection>(entity);
+    draw->AddRectFilled(min, max, selected ? IM_COL32(90, 90, 90, 220) : IM_COL32(0, 0, 0, 180), 3.0f);
+    draw->AddText(ImVec2(min.x + 3.0f, min.y + 2.0f),
+                  selected ? IM_COL32(255, 255, 255, 255) : IM_COL32(255, 200, 40, 255), text.c_str());
+  });
 }
 
 // The drawing tool's options and what it says: the next step, the direction, a typed distance.
@@ -234,7 +290,9 @@ void Viewer::drawSegmentsPanel() {
   ecs::Registry& registry = scene_.registry();
   placeInColumn(true);
   const bool polygons = registry.count<Polygon>() > 0;
-  ImGui::SetNextWindowSize(ImVec2(390, polygons ? 340.0f : 220.0f), ImGuiCond_Always);
+  const bool measurements = registry.count<Measurement>() > 0;
+  ImGui::SetNextWindowSize(ImVec2(390, 220.0f + (polygons ? 120.0f : 0.0f) + (measurements ? 120.0f : 0.0f)),
+                           ImGuiCond_Always);
   ImGui::Begin("Segments", nullptr, ImGuiWindowFlags_NoResize);
   const auto group_name = [&](ecs::Entity entity) -> std::string {
     const InGroup* in = registry.tryGet<InGroup>(entity);
@@ -286,6 +344,19 @@ void Viewer::drawSegmentsPanel() {
     });
     ImGui::EndTable();
   }
+  if (measurements && ImGui::BeginTable("measurements", 3, flags, ImVec2(0, 110))) {
+    ImGui::TableSetupColumn("Measurement", ImGuiTableColumnFlags_WidthFixed, 110.0f);
+    ImGui::TableSetupColumn("Group", ImGuiTableColumnFlags_WidthFixed, 50.0f);
+    ImGui::TableSetupColumn("Value", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableHeadersRow();
+    registry.view<Measurement>().each([&](ecs::Entity entity, const Measurement& measurement) {
+      row(entity, measurement.name);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(
+          cad::measureText(measurement.kind, cad::measure(measurement.kind, measurement.terms)).c_str());
+    });
+    ImGui::EndTable();
+  }
   const bool extend = ImGui::GetIO().KeyCtrl;
   for (const ecs::Entity entity : clicked) scene_.select(entity, extend);
   // Renaming the one selected item.
@@ -295,6 +366,7 @@ void Viewer::drawSegmentsPanel() {
     std::string name;
     if (const Segment* segment = registry.tryGet<Segment>(entity)) name = segment->name;
     if (const Polygon* polygon = registry.tryGet<Polygon>(entity)) name = polygon->name;
+    if (const Measurement* measurement = registry.tryGet<Measurement>(entity)) name = measurement->name;
     const InGroup* in = registry.tryGet<InGroup>(entity);
     if (rename_entity_ != entity) {
       rename_entity_ = entity;

@@ -187,7 +187,7 @@ TEST(SceneState, TheDumpHoldsPlanesEdgesAndCorners) {
   EXPECT_EQ(dump.at("edges").size(), 2u);
   ASSERT_EQ(dump.at("corners").size(), 1u);
   EXPECT_EQ(dump.at("corners")[0].at("segments").size(), 3u);
-  EXPECT_TRUE(dump.at("measure").is_null());
+  EXPECT_TRUE(dump.at("measurements").empty());
 }
 
 TEST(SceneOverlay, DrawsTheSceneAndIsRebuiltOnlyWhenItChanges) {

@@ -49,9 +49,10 @@ TEST(SessionScript, ParsesEveryStepKind) {
     {"screenshot": "a.png"},
     {"resize": [800, 600]},
     {"memory": "soak"},
-    {"colour": "scan"}
+    {"colour": "scan"},
+    {"measure": "between_planes"}
   ])"));
-  ASSERT_EQ(steps.size(), 16u);
+  ASSERT_EQ(steps.size(), 17u);
   EXPECT_EQ(steps[0].frames.size(), 1u);
   ASSERT_EQ(steps[1].frames.size(), 3u) << "move, press, release: one frame each";
   EXPECT_EQ(steps[1].frames[1][0].button, GLFW_MOUSE_BUTTON_RIGHT);
@@ -76,6 +77,8 @@ TEST(SessionScript, ParsesEveryStepKind) {
   EXPECT_EQ(steps[14].name, "soak");
   EXPECT_EQ(steps[15].kind, ScriptStep::Kind::kColour);
   EXPECT_EQ(steps[15].count, static_cast<std::uint64_t>(render::ColourMode::kScan));
+  EXPECT_EQ(steps[16].kind, ScriptStep::Kind::kMeasure);
+  EXPECT_EQ(steps[16].measure, cad::MeasureKind::kBetweenPlanes);
 }
 
 TEST(SessionScript, MistakesNameTheFileAndTheStep) {
@@ -86,6 +89,8 @@ TEST(SessionScript, MistakesNameTheFileAndTheStep) {
   EXPECT_NE(errorOf(writeScript(dir, "[{\"key\": \"NOPE\"}]")).find("unknown key 'NOPE'"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"wait\": \"forever\"}]")).find("unknown wait 'forever'"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"colour\": \"pink\"}]")).find("unknown colour 'pink'"), std::string::npos);
+  EXPECT_NE(errorOf(writeScript(dir, "[{\"measure\": \"volume\"}]")).find("unknown measure 'volume' (distance, angle"),
+            std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"screenshot\": \"../x.png\"}]")).find("no folders"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"click\": [1e300, 2]}]")).find("outside any window"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"click_world\": [1, 2, \"z\"]}]")).find("[X, Y, Z]"), std::string::npos);
