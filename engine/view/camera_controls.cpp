@@ -61,6 +61,23 @@ Ray rayThroughPixel(const Camera& camera, double x_px, double y_px) {
   return {camera.position, (axes.forward + axes.right * (dx * scale) + axes.up * (dy * scale)).normalized()};
 }
 
+std::optional<double> lineParameterNearestRay(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const Ray& ray) {
+  const double b = d.dot(ray.direction);
+  const double denominator = 1.0 - b * b;
+  if (denominator < 1e-12) return std::nullopt;
+  const Eigen::Vector3d w = p - ray.origin;
+  return (b * w.dot(ray.direction) - w.dot(d)) / denominator;
+}
+
+std::optional<Eigen::Vector3d> rayHitOnPlane(const Ray& ray, const Eigen::Vector3d& point,
+                                             const Eigen::Vector3d& normal) {
+  const double facing = normal.dot(ray.direction);
+  if (std::abs(facing) < 1e-12 * normal.norm()) return std::nullopt;
+  const double t = normal.dot(point - ray.origin) / facing;
+  if (t <= 0.0) return std::nullopt;
+  return ray.origin + t * ray.direction;
+}
+
 Camera orbit(const Camera& camera, const Eigen::Vector3d& pivot, double yaw_rad, double pitch_rad) {
   // Eye, target and up turn together about the pivot: the pivot keeps its place in the camera's
   // frame, hence its pixel.

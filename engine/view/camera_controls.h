@@ -24,6 +24,15 @@ struct Ray {
 // from the eye's plane, parallel to the view direction).
 Ray rayThroughPixel(const Camera& camera, double x_px, double y_px);
 
+// The parameter s of the point of the line p + s d (d unit) nearest to `ray`; nothing when they
+// are parallel. What a drag along a line follows (an edge's snap, a box face's handle).
+std::optional<double> lineParameterNearestRay(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const Ray& ray);
+
+// Where `ray` meets the plane through `point` with `normal` (any length), in front of its origin;
+// nothing when it runs parallel to it or the plane lies behind.
+std::optional<Eigen::Vector3d> rayHitOnPlane(const Ray& ray, const Eigen::Vector3d& point,
+                                             const Eigen::Vector3d& normal);
+
 // Turns the eye around `pivot` (usually the picked point or the target): by `yaw` about the
 // world's z axis and by `pitch` about the camera's right axis, positive pitch looking down more.
 // The pivot keeps its pixel; the pitch stops a degree short of looking straight up or down.

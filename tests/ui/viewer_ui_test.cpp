@@ -300,6 +300,46 @@ TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
   EXPECT_NEAR(project.at("section").at("slice").at("thickness").get<double>(), 0.1, 1e-12);
 }
 
+// The clip box's handles dragged in the view: a face moved in (the opposite face stays), the
+// box moved by its centre, then turned a quarter about the vertical; the project keeps the box.
+TEST(Viewer, TheClipBoxFollowsItsHandles) {
+  const plumb::test::TempDirectory dir;
+  const fs::path ply = dir.file("room.ply");
+  const std::string simulate = std::string("'") + PLUMB_BINARY + "' simulate --scene room --points 200000 " +
+                               "--noise-mm 2 -o '" + ply.string() + "' >/dev/null";
+  ASSERT_EQ(std::system(simulate.c_str()), 0);
+  // The box about the room (7 x 5 x 2.5 m), half a metre beyond each wall: x from -0.5 to 7.5.
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      // The x+ face from 7.5 to 5.0: the box spans x -0.5 to 5, its centre at 2.25.
+      {{"drag_world", json::array({world({7.5, 2.5, 1.25}), world({5.0, 2.5, 1.25})})}},
+      {{"wait", "frames"}, {"count", 2}},
+      // The centre 0.5 m along x.
+      {{"drag_world", json::array({world({2.25, 2.5, 1.25}), world({2.75, 2.5, 1.25})})}},
+      {{"wait", "frames"}, {"count", 2}},
+      // The turn handle (beyond the top of the x+ face: 2.75 + 2.75 + 0.75 m) a quarter turn about
+      // the centre.
+      {{"drag_world", json::array({world({6.25, 2.5, 2.75}), world({2.75, 6.0, 2.75})})}},
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"screenshot", "clip-box.png"}},
+      {{"key_down", "LEFT_CONTROL"}},
+      {{"key", "S"}},
+      {{"key_up", "LEFT_CONTROL"}},
+  });
+  std::string arguments = "'";
+  arguments += ply.string();
+  arguments += "' --clip-box 3.5,2.5,1.25,8,6,3";
+  ASSERT_EQ(plumb::test::runViewerSession(dir, arguments, steps, 1280, 720), 0);
+  plumb::test::keepScreenshots(dir);
+  const json box = readJson(ply.string() + ".plumbproj").at("section").at("box");
+  std::printf("the box: %s\n", box.dump().c_str());
+  // Dragged between pixels: each end lies within a few millimetres of the world point aimed at.
+  EXPECT_NEAR((vector3(box.at("centre")) - Eigen::Vector3d(2.75, 2.5, 1.25)).norm(), 0.0, 0.02);
+  EXPECT_NEAR((vector3(box.at("size")) - Eigen::Vector3d(5.5, 6.0, 3.0)).norm(), 0.0, 0.02);
+  EXPECT_NEAR(box.at("turn_rad").get<double>(), M_PI / 2.0, 0.01);
+  EXPECT_FALSE(box.at("keep_outside").get<bool>());
+}
+
 }  // namespace
 
 namespace {

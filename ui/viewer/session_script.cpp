@@ -120,6 +120,13 @@ class StepParser {
     } else if (step_.contains("click_world")) {
       out.kind = ScriptStep::Kind::kClickWorld;
       out.world = worldPoint(step_.at("click_world"), "click_world");
+    } else if (step_.contains("drag_world")) {
+      const json& value = step_.at("drag_world");
+      if (!value.is_array() || value.size() != 2) fail("'drag_world' must be [[X, Y, Z], [X, Y, Z]]");
+      out.kind = ScriptStep::Kind::kDragWorld;
+      out.world = worldPoint(value[0], "drag_world[0]");
+      out.target = worldPoint(value[1], "drag_world[1]");
+      out.count = static_cast<std::uint64_t>(number("steps", 10, 1, 1000));
     } else if (step_.contains("move_world")) {
       out.kind = ScriptStep::Kind::kMoveWorld;
       out.world = worldPoint(step_.at("move_world"), "move_world");
@@ -325,6 +332,10 @@ ScriptFrame ScriptPlayer::next(bool grower_idle, bool streaming_idle) {
         return frame;
       case ScriptStep::Kind::kMoveWorld:
         frame.move_world = step.world;
+        done();
+        return frame;
+      case ScriptStep::Kind::kDragWorld:
+        frame.drag_world = ScriptFrame::WorldDrag{step.world, step.target, static_cast<int>(step.count)};
         done();
         return frame;
       case ScriptStep::Kind::kLook:

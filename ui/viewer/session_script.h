@@ -8,6 +8,8 @@
 //   {"double_click": [x, y]}
 //   {"click_world": [X, Y, Z]}             a left click where a world point appears now
 //   {"move_world": [X, Y, Z]}              the mouse to where a world point appears now
+//   {"drag_world": [[X, Y, Z], [X, Y, Z]], "steps": 10}   a left drag between where two world
+//                                          points appear now (a clip box's handle)
 //   {"look": {"position": [X, Y, Z], "target": [X, Y, Z]}}   the camera, level (the viewport stays)
 //   {"drag": [x0, y0, x1, y1], "button": "left", "steps": 10}
 //   {"wheel": 1.0, "at": [x, y]}           positive zooms in
@@ -50,6 +52,7 @@ struct ScriptStep {
     kEvents,      // `frames`: the events of each frame in turn
     kClickWorld,  // `world`
     kMoveWorld,   // `world`
+    kDragWorld,   // from `world` to `target` in `count` moves
     kLook,        // `world` (the eye), `target`
     kTool,        // `tool`
     kMeasure,     // `measure`: the Measure tool with this kind
@@ -89,9 +92,14 @@ struct ScriptFrame {
   std::optional<int> colour;                // the View panel's Colour, a render::ColourMode
   std::optional<std::string> screenshot;    // file name
   std::optional<std::pair<int, int>> resize;
-  std::optional<std::string> memory;                                // print a memory report with this label
-  std::optional<Eigen::Vector3d> click_world;                       // the viewer turns it into a click at its pixel
-  std::optional<Eigen::Vector3d> move_world;                        // ... a mouse move to its pixel
+  std::optional<std::string> memory;           // print a memory report with this label
+  std::optional<Eigen::Vector3d> click_world;  // the viewer turns it into a click at its pixel
+  std::optional<Eigen::Vector3d> move_world;   // ... a mouse move to its pixel
+  struct WorldDrag {
+    Eigen::Vector3d from, to;
+    int steps = 10;
+  };
+  std::optional<WorldDrag> drag_world;  // ... a left drag between their pixels, in this frame
   std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> look;  // eye and target
   bool finished = false;                                            // every step is done
   std::optional<std::string> failure;                               // a wait timed out: the session fails

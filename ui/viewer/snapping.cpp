@@ -17,17 +17,6 @@ double nearestFraction(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
   return length2 > 0.0 ? std::clamp((c - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
 }
 
-// The point of line p + s d nearest to the ray o + t r (both directions unit); the line
-// parameter s, or nothing when they are parallel.
-std::optional<double> lineParameterNearestRay(const Eigen::Vector3d& p, const Eigen::Vector3d& d,
-                                              const view::Ray& ray) {
-  const double b = d.dot(ray.direction);
-  const double denominator = 1.0 - b * b;
-  if (denominator < 1e-12) return std::nullopt;
-  const Eigen::Vector3d w = p - ray.origin;
-  return (b * w.dot(ray.direction) - w.dot(d)) / denominator;
-}
-
 bool insideTriangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                     const Eigen::Vector2d& c) {
   const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
@@ -101,7 +90,8 @@ std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera
     if (distance > options.radius_px || (best && distance >= best->distance_px)) return;
     const double length = (edge.end - edge.start).norm();
     const Eigen::Vector3d direction = length > 0.0 ? Eigen::Vector3d((edge.end - edge.start) / length) : edge.direction;
-    const double s = std::clamp(lineParameterNearestRay(edge.start, direction, ray).value_or(t * length), 0.0, length);
+    const double s =
+        std::clamp(view::lineParameterNearestRay(edge.start, direction, ray).value_or(t * length), 0.0, length);
     best = Snap{Snap::Kind::kEdge, edge.start + s * direction, entity, distance};
   });
   if (best) return best;

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +27,40 @@
 
 namespace plumb::viewer {
 namespace {
+
+// A digest of what a project keeps of the section (its "section"), so that a changed section marks
+// the project unsaved as an edit of the scene does.
+std::uint64_t sectionDigest(const view::ClipSettings& clip) {
+  if (!clip.active()) return 0;
+  std::uint64_t digest = 14695981039346656037ull;  // FNV-1a over the values' bits
+  const auto mix = [&](double value) { digest = (digest ^ std::bit_cast<std::uint64_t>(value)) * 1099511628211ull; };
+  const auto mixVector = [&](const Eigen::Vector3d& v) {
+    for (Eigen::Index i = 0; i < 3; ++i) mix(v[i]);
+  };
+  if (clip.slice) {
+    mix(1.0);
+    mix(clip.slice_bottom_z);
+    mix(clip.slice_thickness);
+  }
+  if (clip.slab) {
+    mix(2.0);
+    mixVector(clip.slab->point);
+    mixVector(clip.slab->normal);
+    mix(clip.slab->thickness);
+  }
+  if (clip.box) {
+    mix(clip.keep_outside_box ? 4.0 : 3.0);
+    mixVector(clip.box->centre);
+    mixVector(clip.box->half_size);
+    mix(clip.box->yaw_rad);
+  }
+  for (const view::ClipPlane& plane : clip.planes) {
+    mix(5.0);
+    mixVector(plane.point);
+    mixVector(plane.normal);
+  }
+  return digest;
+}
 
 // What a saved project holds, for the messages of saves and autosaves.
 std::string projectContents(const cad::Project& project) {
@@ -121,7 +156,7 @@ Viewer::~Viewer() {
 void Viewer::openProject() {
   std::optional<cad::Project> project = project_.takeOpened();
   if (!project) {
-    project_.markSaved(documentVersion(scene_.registry()));
+    project_.markSaved(documentState());
     return;
   }
   if (options_.cloud.empty() && !project->cloud_path.empty()) {
@@ -133,7 +168,7 @@ void Viewer::openProject() {
   if (!options_.clip.active() && project->section) clip_ = *project->section;
   loadProject(*project, scene_);
   // Recovered work is not in the project file yet.
-  project_.markSaved(project_.recovered() ? ~std::uint64_t{0} : documentVersion(scene_.registry()));
+  project_.markSaved(project_.recovered() ? ~std::uint64_t{0} : documentState());
   project_message_ =
       project_.recovered() ? "recovered unsaved work from " + project_.autosavePath() : "opened " + project_.path();
   std::printf("plumb view: %s\n", project_message_.c_str());
@@ -152,7 +187,7 @@ cad::Project Viewer::currentProject() const {
 void Viewer::saveProject() {
   try {
     const cad::Project project = currentProject();
-    project_.save(project, documentVersion(scene_.registry()));
+    project_.save(project, documentState());
     project_message_ = "saved " + project_.path() + " (" + projectContents(project) + ")";
   } catch (const std::exception& error) {
     project_message_ = error.what();
@@ -164,7 +199,7 @@ void Viewer::saveProject() {
 // Unsaved changes go to the autosave every autosave interval (--autosave-s), and when the viewer
 // closes (`now`).
 void Viewer::autosaveProject(bool now) {
-  const std::uint64_t version = documentVersion(scene_.registry());
+  const std::uint64_t version = documentState();
   const Clock::time_point time = Clock::now();
   if (!(now ? project_.unsaved(version) : project_.autosaveDue(version, time))) return;
   try {
@@ -405,31 +440,44 @@ int Viewer::run() {
         camera.up = Eigen::Vector3d::UnitZ();  // level, whatever the view before
         cloud_->navigator->setCamera(camera);
       }
-      const std::array<std::pair<std::optional<Eigen::Vector3d>, bool>, 2> world_steps{
-          {{frame.click_world, true}, {frame.move_world, false}}};
-      for (const auto& [world, press] : world_steps) {
-        if (!world || !cloud_) continue;
-        const std::optional<Eigen::Vector2d> pixel = view::pixelOf(cloud_->navigator->camera(), *world);
+      // Steps at world points: their window pixels in the view now.
+      const auto windowPixel = [&](const Eigen::Vector3d& world) -> std::optional<Eigen::Vector2d> {
+        const std::optional<Eigen::Vector2d> pixel = view::pixelOf(cloud_->navigator->camera(), world);
         if (!pixel) {
           std::fprintf(stderr, "plumb view: %s: the world point of a step is behind the camera\n",
                        options_.script.c_str());
           exit_status_ = 1;
           quit_ = true;
-          break;
+          return std::nullopt;
         }
-        const double x = pixel->x() / renderScale(), y = pixel->y() / renderScale();
-        events.push_back({.kind = InputEvent::Kind::kMouseMove, .x = x, .y = y});
+        return Eigen::Vector2d(*pixel / renderScale());
+      };
+      const auto mouse = [](InputEvent::Kind kind, const Eigen::Vector2d& at, bool pressed = false) {
+        return InputEvent{.kind = kind, .x = at.x(), .y = at.y(), .button = GLFW_MOUSE_BUTTON_LEFT, .pressed = pressed};
+      };
+      const std::array<std::pair<std::optional<Eigen::Vector3d>, bool>, 2> world_steps{
+          {{frame.click_world, true}, {frame.move_world, false}}};
+      for (const auto& [world, press] : world_steps) {
+        if (!world || !cloud_) continue;
+        const std::optional<Eigen::Vector2d> at = windowPixel(*world);
+        if (!at) break;
+        events.push_back(mouse(InputEvent::Kind::kMouseMove, *at));
         if (press) {
-          events.push_back({.kind = InputEvent::Kind::kMouseButton,
-                            .x = x,
-                            .y = y,
-                            .button = GLFW_MOUSE_BUTTON_LEFT,
-                            .pressed = true});
-          events.push_back({.kind = InputEvent::Kind::kMouseButton,
-                            .x = x,
-                            .y = y,
-                            .button = GLFW_MOUSE_BUTTON_LEFT,
-                            .pressed = false});
+          events.push_back(mouse(InputEvent::Kind::kMouseButton, *at, true));
+          events.push_back(mouse(InputEvent::Kind::kMouseButton, *at, false));
+        }
+      }
+      if (frame.drag_world && cloud_ && !quit_) {
+        const std::optional<Eigen::Vector2d> from = windowPixel(frame.drag_world->from);
+        const std::optional<Eigen::Vector2d> to = from ? windowPixel(frame.drag_world->to) : std::nullopt;
+        if (from && to) {
+          events.push_back(mouse(InputEvent::Kind::kMouseMove, *from));
+          events.push_back(mouse(InputEvent::Kind::kMouseButton, *from, true));
+          for (int i = 1; i <= frame.drag_world->steps; ++i) {
+            const double t = static_cast<double>(i) / frame.drag_world->steps;
+            events.push_back(mouse(InputEvent::Kind::kMouseMove, *from + t * (*to - *from)));
+          }
+          events.push_back(mouse(InputEvent::Kind::kMouseButton, *to, false));
         }
       }
       if (quit_) break;
@@ -560,6 +608,9 @@ void Viewer::handleViewEvent(const InputEvent& event) {
       (event.key == GLFW_KEY_LEFT_CONTROL || event.key == GLFW_KEY_RIGHT_CONTROL)) {
     control_held_ = event.pressed;
   }
+  if (event.kind == InputEvent::Kind::kKey && (event.key == GLFW_KEY_LEFT_SHIFT || event.key == GLFW_KEY_RIGHT_SHIFT)) {
+    shift_held_ = event.pressed;
+  }
   if (drawingKey(event)) return;
   if (event.kind == InputEvent::Kind::kKey && event.pressed) {
     const bool control = (event.mods & GLFW_MOD_CONTROL) != 0 || control_held_;
@@ -623,6 +674,7 @@ void Viewer::handleViewEvent(const InputEvent& event) {
     }
   }
   if (!cloud_) return;
+  if (clipBoxEvent(event)) return;
   // The navigator works in window pixels (a drag turns the view as far whatever the render scale,
   // which changes while the view moves); picks and the tools in render pixels (the window's, times
   // the render scale).
@@ -630,6 +682,63 @@ void Viewer::handleViewEvent(const InputEvent& event) {
   const bool clicked =
       cloud_->navigator->handle(event, [this, scale](double x, double y) { return pickAt(x * scale, y * scale); });
   if (clicked) click(event.x * scale, event.y * scale);
+}
+
+// The scene's overlay, with the clip box's edges and handles when there is one. Made anew only
+// when the scene's overlay, the box or the lit handle changed.
+std::shared_ptr<const render::OverlayScene> Viewer::withClipBox(std::shared_ptr<const render::OverlayScene> scene) {
+  if (!clip_.box) return scene;
+  const std::optional<BoxHandle> lit = box_drag_ ? std::optional(box_drag_->handle()) : hovered_box_handle_;
+  const bool same = box_overlay_ && box_overlay_source_ == scene && box_overlay_lit_ == lit &&
+                    box_overlay_box_.centre == clip_.box->centre &&
+                    box_overlay_box_.half_size == clip_.box->half_size &&
+                    box_overlay_box_.yaw_rad == clip_.box->yaw_rad;
+  if (!same) {
+    auto overlay = std::make_shared<render::OverlayScene>(*scene);
+    addClipBox(*overlay, *clip_.box, lit);
+    box_overlay_ = std::move(overlay);
+    box_overlay_source_ = std::move(scene);
+    box_overlay_box_ = *clip_.box;
+    box_overlay_lit_ = lit;
+  }
+  return box_overlay_;
+}
+
+// The document as a project saves it: the scene's items and the section.
+std::uint64_t Viewer::documentState() const {
+  return documentVersion(scene_.registry()) * 0x9E3779B97F4A7C15ull + sectionDigest(clip_);
+}
+
+// The clip box's handles: a left press on one starts dragging it (Shift: the centre up and down),
+// moves drag it, the release ends it; the navigator and the tools see none of these. Without a
+// drag, moves only light the handle under the cursor. True when taken.
+bool Viewer::clipBoxEvent(const InputEvent& event) {
+  if (!clip_.box) {
+    box_drag_.reset();
+    hovered_box_handle_.reset();
+    return false;
+  }
+  const double scale = renderScale();
+  const view::Camera& camera = cloud_->navigator->camera();
+  const view::Ray ray = view::rayThroughPixel(camera, event.x * scale, event.y * scale);
+  if (event.kind == InputEvent::Kind::kMouseMove) {
+    if (box_drag_) {
+      clip_.box = box_drag_->boxFor(ray);
+      return true;
+    }
+    hovered_box_handle_ = boxHandleAt(*clip_.box, camera, event.x * scale, event.y * scale);
+    return false;
+  }
+  if (event.kind != InputEvent::Kind::kMouseButton || event.button != GLFW_MOUSE_BUTTON_LEFT) return false;
+  if (!event.pressed) {
+    const bool dragging = box_drag_.has_value();
+    box_drag_.reset();
+    return dragging;
+  }
+  const std::optional<BoxHandle> handle = boxHandleAt(*clip_.box, camera, event.x * scale, event.y * scale);
+  if (!handle) return false;
+  box_drag_.emplace(*clip_.box, *handle, ray, (event.mods & GLFW_MOD_SHIFT) != 0 || shift_held_);
+  return true;
 }
 
 std::optional<Eigen::Vector3d> Viewer::pickAt(double x_px, double y_px) {
@@ -838,7 +947,7 @@ void Viewer::render(bool screenshot, const std::string& screenshot_name) {
   const int width = std::max(1, static_cast<int>(std::lround(size.width * scale)));
   const int height = std::max(1, static_cast<int>(std::lround(size.height * scale)));
   cloud_->navigator->setViewport(width, height, static_cast<int>(size.width));
-  cloud_->renderer->setOverlay(overlay_.update(scene_.registry()));
+  cloud_->renderer->setOverlay(withClipBox(overlay_.update(scene_.registry())));
   const std::optional<gpu::SwapchainImage> image = swapchain_.acquire();
   if (!image) return;
   pending_screenshot_ = screenshot && swapchain_.readable();

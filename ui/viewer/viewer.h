@@ -19,6 +19,7 @@
 #include "engine/jobs/job_system.h"
 #include "engine/render/point_renderer.h"
 #include "reco/parameters.h"
+#include "ui/viewer/clip_box_handles.h"
 #include "ui/viewer/drawing_tools.h"
 #include "ui/viewer/grow_session.h"
 #include "ui/viewer/imgui_layer.h"
@@ -88,6 +89,8 @@ class Viewer {
   void handleEvents(const std::vector<InputEvent>& events);
   void handleViewEvent(const InputEvent& event);
   void click(double x_px, double y_px);
+  bool clipBoxEvent(const InputEvent& event);
+  std::shared_ptr<const render::OverlayScene> withClipBox(std::shared_ptr<const render::OverlayScene> scene);
   bool drawingKey(const InputEvent& event);
   Pointer pointerAt(double x_px, double y_px, bool pick_point);
   void selectAt(double x_px, double y_px);
@@ -103,6 +106,7 @@ class Viewer {
   void deleteSelected();
   void openProject();
   cad::Project currentProject() const;
+  std::uint64_t documentState() const;
   void saveProject();
   void reportMemory(const std::string& label) const;
   void autosaveProject(bool now);
@@ -127,6 +131,7 @@ class Viewer {
   void drawViewPanel();
   void drawScanLegend();
   void drawSectionControls();
+  void drawClipPlaneControls();
   void showElevationOfSelected();
   // The one selected segment, else null with a message that `what` needs one.
   const Segment* theSelectedSegment(const std::string& what);
@@ -163,7 +168,12 @@ class Viewer {
   bool quit_ = false;
 
   render::RenderSettings settings_;
-  view::ClipSettings clip_;       // the View panel's section: each frame's settings_.clip
+  view::ClipSettings clip_;                      // the View panel's section: each frame's settings_.clip
+  std::optional<BoxDrag> box_drag_;              // a clip box handle being dragged
+  std::optional<BoxHandle> hovered_box_handle_;  // the handle under the cursor, lit
+  std::shared_ptr<const render::OverlayScene> box_overlay_, box_overlay_source_;  // withClipBox's last
+  view::ClipBox box_overlay_box_;
+  std::optional<BoxHandle> box_overlay_lit_;
   float render_scale_ = 1.0f;     // of a still view
   double moving_scale_ = 1.0;     // of a moving view, adapted to the frame time
   bool adaptive_quality_ = true;  // lower resolution and budget while moving
@@ -181,6 +191,7 @@ class Viewer {
   double mouse_x_ = 0.0, mouse_y_ = 0.0;       // window pixels
   Eigen::Vector2d hovered_px_ = Eigen::Vector2d::Zero();  // render pixels at the last hover
   bool control_held_ = false;
+  bool shift_held_ = false;
   std::string project_message_;
   float left_column_y_ = 10.0f,
         right_column_y_ = 10.0f;  // where the next panel of each column goes  // the last save's or export's outcome

@@ -65,7 +65,7 @@ void Viewer::drawPanels() {
 void Viewer::drawProjectPanel() {
   placeInColumn(true);
   ImGui::Begin("Project", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  const bool unsaved = project_.unsaved(documentVersion(scene_.registry()));
+  const bool unsaved = project_.unsaved(documentState());
   ImGui::Text("%s%s", std::filesystem::path(project_.path()).filename().string().c_str(), unsaved ? " *" : "");
   tooltip(project_.path().c_str());
   if (ImGui::Button("Save")) saveProject();
@@ -527,7 +527,40 @@ void Viewer::drawSectionControls() {
                           ImGuiSliderFlags_AlwaysClamp)) {
       b.yaw_rad = yaw_deg * M_PI / 180.0;
     }
+    ImGui::TextDisabled("or drag its handles (Shift: the centre up, down)");
   }
+  drawClipPlaneControls();
+}
+
+// Clip planes: each keeps one side of a selected segment's plane, the side the view is on.
+void Viewer::drawClipPlaneControls() {
+  if (ImGui::Button("Clip at plane")) {
+    if (const Segment* segment = theSelectedSegment("clip plane")) {
+      const view::ClipRegion region = clip_.region();
+      if (region.planes.size() + (region.box ? 6 : 0) >= view::ClipRegion::kMaxPlanes) {
+        scene_.registry().patch<ToolState>(scene_.toolEntity(), [](ToolState& t) {
+          t.drawing.message = "clip plane: no more planes (at most 32, with a slice's two and a box's six)";
+        });
+      } else {
+        const reco::Plane facing = segment->plane.orientedTowards(cloud_->navigator->camera().position);
+        clip_.planes.push_back({facing.centroid, facing.normal.normalized()});
+      }
+    }
+  }
+  tooltip("Keep the side of the selected segment's plane that the view is on: a wall cut away to see the room");
+  std::optional<std::size_t> removed;
+  for (std::size_t i = 0; i < clip_.planes.size(); ++i) {
+    view::ClipPlane& plane = clip_.planes[i];
+    ImGui::PushID(static_cast<int>(i));
+    ImGui::Text("Plane %zu: normal (%.2f, %.2f, %.2f)", i + 1, plane.normal.x(), plane.normal.y(), plane.normal.z());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Flip")) plane.normal = -plane.normal;
+    tooltip("Keep the other side");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Remove")) removed = i;
+    ImGui::PopID();
+  }
+  if (removed) clip_.planes.erase(clip_.planes.begin() + static_cast<std::ptrdiff_t>(*removed));
 }
 
 // The scans' colours and names; a long list scrolls.

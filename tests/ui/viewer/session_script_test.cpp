@@ -50,9 +50,10 @@ TEST(SessionScript, ParsesEveryStepKind) {
     {"resize": [800, 600]},
     {"memory": "soak"},
     {"colour": "scan"},
-    {"measure": "between_planes"}
+    {"measure": "between_planes"},
+    {"drag_world": [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]], "steps": 3}
   ])"));
-  ASSERT_EQ(steps.size(), 17u);
+  ASSERT_EQ(steps.size(), 18u);
   EXPECT_EQ(steps[0].frames.size(), 1u);
   ASSERT_EQ(steps[1].frames.size(), 3u) << "move, press, release: one frame each";
   EXPECT_EQ(steps[1].frames[1][0].button, GLFW_MOUSE_BUTTON_RIGHT);
@@ -79,6 +80,9 @@ TEST(SessionScript, ParsesEveryStepKind) {
   EXPECT_EQ(steps[15].count, static_cast<std::uint64_t>(render::ColourMode::kScan));
   EXPECT_EQ(steps[16].kind, ScriptStep::Kind::kMeasure);
   EXPECT_EQ(steps[16].measure, cad::MeasureKind::kBetweenPlanes);
+  EXPECT_EQ(steps[17].kind, ScriptStep::Kind::kDragWorld);
+  EXPECT_EQ(steps[17].target, Eigen::Vector3d(4.0, 5.0, 6.0));
+  EXPECT_EQ(steps[17].count, 3u);
 }
 
 TEST(SessionScript, MistakesNameTheFileAndTheStep) {
@@ -91,6 +95,9 @@ TEST(SessionScript, MistakesNameTheFileAndTheStep) {
   EXPECT_NE(errorOf(writeScript(dir, "[{\"colour\": \"pink\"}]")).find("unknown colour 'pink'"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"measure\": \"volume\"}]")).find("unknown measure 'volume' (distance, angle"),
             std::string::npos);
+  EXPECT_NE(
+      errorOf(writeScript(dir, "[{\"drag_world\": [[1, 2, 3]]}]")).find("'drag_world' must be [[X, Y, Z], [X, Y, Z]]"),
+      std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"screenshot\": \"../x.png\"}]")).find("no folders"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"click\": [1e300, 2]}]")).find("outside any window"), std::string::npos);
   EXPECT_NE(errorOf(writeScript(dir, "[{\"click_world\": [1, 2, \"z\"]}]")).find("[X, Y, Z]"), std::string::npos);
