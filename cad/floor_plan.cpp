@@ -17,9 +17,13 @@
 namespace plumb::cad {
 namespace {
 
-double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // `value` with `decimals` digits after the point, for SVG (no exponent, no locale).
 std::string fixed(double value, int decimals) {
@@ -88,8 +92,8 @@ void clipToOutline(FaceLine& line, const FloorPlanOptions& options, std::vector<
   }
   for (std::size_t i = 0; i + 1 < line.stretches.size(); ++i) {
     const double from = line.stretches[i].second, to = line.stretches[i + 1].first;
-    openings.push_back({line.segment->id, line.origin + from * line.direction, line.origin + to * line.direction,
-                        to - from});
+    openings.push_back(
+        {line.segment->id, line.origin + from * line.direction, line.origin + to * line.direction, to - from});
   }
 }
 
@@ -114,6 +118,76 @@ struct EndRef {
     return end == 0 ? s.first : s.second;
   }
 };
+
+// Whether the 2D segment from p to q crosses the stretch [t0, t1] of `face`.
+bool crossesStretch(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const FaceLine& face, double t0, double t1) {
+  const Eigen::Vector2d a = (face.origin + t0 * face.direction).head<2>();
+  const Eigen::Vector2d b = (face.origin + t1 * face.direction).head<2>();
+  const double d1 = cross2(q - p, a - p), d2 = cross2(q - p, b - p);
+  const double d3 = cross2(b - a, p - a), d4 = cross2(b - a, q - a);
+  return ((d1 < 0.0) != (d2 < 0.0)) && ((d3 < 0.0) != (d4 < 0.0));
+}
+
+using EndKey = std::tuple<std::size_t, std::size_t, std::size_t>;
+
+// Step 3, for what the join gap leaves open: a face's outer end, still free, that stops short of
+// its line's crossing with another face by more than the join gap but at most join_reach_m moves
+// to the crossing when the other face has a free end within the join gap of it (a corner, not a T)
+// and no other face's stretch lies across the gap. So a corridor's long walls, grown only to
+// metres short of its ends where the scanner saw them at grazing angles, still meet its end walls.
+std::size_t joinAcrossEmptyGaps(std::vector<FaceLine>& faces, const FloorPlanOptions& options,
+                                std::map<EndKey, bool>& moved) {
+  struct Reach {
+    double gap;
+    EndRef far, near;
+    double t_far, t_near;
+  };
+  std::vector<Reach> reaches;
+  const double min_angle = radians(options.min_join_angle_deg);
+  const auto key = [](const EndRef& e) { return EndKey{e.face, e.stretch, e.end}; };
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (faces[i].stretches.empty()) continue;
+    // The face's two outer ends: its first stretch's start, its last one's end.
+    for (const EndRef end : {EndRef{i, 0, 0}, EndRef{i, faces[i].stretches.size() - 1, 1}}) {
+      if (moved[key(end)]) continue;
+      for (std::size_t j = 0; j < faces.size(); ++j) {
+        if (j == i) continue;
+        const auto cross = crossing(faces[i], faces[j], min_angle);
+        if (!cross) continue;
+        const auto [ti, tj] = *cross;
+        // Beyond the end, along the line's continuation.
+        const double gap = end.end == 0 ? end.at(faces) - ti : ti - end.at(faces);
+        if (gap <= options.join_gap_m || gap > options.join_reach_m) continue;
+        std::optional<EndRef> near;
+        for (std::size_t s = 0; s < faces[j].stretches.size(); ++s) {
+          for (std::size_t e = 0; e < 2; ++e) {
+            const EndRef other{j, s, e};
+            if (!moved[key(other)] && std::abs(other.at(faces) - tj) <= options.join_gap_m) near = other;
+          }
+        }
+        if (!near) continue;
+        const Eigen::Vector2d p = (faces[i].origin + end.at(faces) * faces[i].direction).head<2>();
+        const Eigen::Vector2d q = (faces[i].origin + ti * faces[i].direction).head<2>();
+        bool blocked = false;
+        for (std::size_t k = 0; k < faces.size() && !blocked; ++k) {
+          if (k == i || k == j) continue;
+          for (const auto& [t0, t1] : faces[k].stretches) blocked = blocked || crossesStretch(p, q, faces[k], t0, t1);
+        }
+        if (!blocked) reaches.push_back({gap, end, *near, ti, tj});
+      }
+    }
+  }
+  std::stable_sort(reaches.begin(), reaches.end(), [](const Reach& x, const Reach& y) { return x.gap < y.gap; });
+  std::size_t joins = 0;
+  for (const Reach& r : reaches) {
+    if (moved[key(r.far)] || moved[key(r.near)]) continue;
+    r.far.parameter(faces) = r.t_far;
+    r.near.parameter(faces) = r.t_near;
+    moved[key(r.far)] = moved[key(r.near)] = true;
+    ++joins;
+  }
+  return joins;
+}
 
 // Step 3 of the header: the ends of two faces that meet near their lines' crossing move to it,
 // nearest pairs first; then an end near another face's stretch (a T: an inner wall meeting an
@@ -169,7 +243,7 @@ std::size_t joinCorners(std::vector<FaceLine>& faces, const FloorPlanOptions& op
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& x, const Candidate& y) { return x.cost < y.cost; });
-  std::map<std::tuple<std::size_t, std::size_t, std::size_t>, bool> moved;
+  std::map<EndKey, bool> moved;
   const auto key = [](const EndRef& e) { return std::tuple{e.face, e.stretch, e.end}; };
   std::size_t joins = 0;
   for (const Candidate& c : candidates) {
@@ -185,6 +259,7 @@ std::size_t joinCorners(std::vector<FaceLine>& faces, const FloorPlanOptions& op
     tee.end.parameter(faces) = tee.t;
     moved[key(tee.end)] = true;
   }
+  joins += joinAcrossEmptyGaps(faces, options, moved);
   // A join may turn a stretch around (both its ends moved past each other): drop it.
   for (FaceLine& face : faces) {
     std::erase_if(face.stretches, [&](const auto& s) { return s.second - s.first < options.min_line_m; });
@@ -386,8 +461,7 @@ std::string floorPlanSvg(const FloorPlan& plan) {
   const std::string height = fixed(plan.height_m, 3);
   std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + fixed(size.x(), 3) + "mm\" height=\"" +
-         fixed(size.y(), 3) + "mm\" viewBox=\"0 0 " + fixed(size.x(), 3) + " " + fixed(size.y(), 3) +
-         "\">\n";
+         fixed(size.y(), 3) + "mm\" viewBox=\"0 0 " + fixed(size.x(), 3) + " " + fixed(size.y(), 3) + "\">\n";
   svg += "<title>Floor plan, section at z = " + height + " m</title>\n";
   svg += "<desc>Plumb floor plan: wall faces cut at z = " + height +
          " m. Scale 1:1, one unit is one millimetre: the world point (x, y) in metres is drawn at (" +
@@ -404,8 +478,8 @@ std::string floorPlanSvg(const FloorPlan& plan) {
   }
   svg += "</g>\n<g stroke=\"black\" stroke-width=\"10\" stroke-dasharray=\"60 40\">\n";
   for (const PlanOpening& opening : plan.openings) {
-    svg += "<line x1=\"" + x(opening.start) + "\" y1=\"" + y(opening.start) + "\" x2=\"" + x(opening.end) +
-           "\" y2=\"" + y(opening.end) + "\"/>\n";
+    svg += "<line x1=\"" + x(opening.start) + "\" y1=\"" + y(opening.start) + "\" x2=\"" + x(opening.end) + "\" y2=\"" +
+           y(opening.end) + "\"/>\n";
   }
   svg += "</g>\n<text x=\"" + fixed(kMargin, 0) + "\" y=\"" + fixed(kMargin * 0.6, 0) +
          "\" font-family=\"sans-serif\" font-size=\"150\">Section at z = " + height + " m</text>\n";

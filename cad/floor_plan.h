@@ -17,7 +17,10 @@
 //    join_gap_m of an end of each, both ends move to the crossing, the intersection of the two
 //    wall planes, nearest pairs first. So the plan closes where the points stop short of a
 //    corner, as the planes do. An end near the middle of another face's stretch (an inner wall
-//    meeting an outer one) moves onto that face's line.
+//    meeting an outer one) moves onto that face's line. Then an outer end still free, short of
+//    a crossing by up to join_reach_m, moves to it when the other face has a free end there and no
+//    other face's stretch lies across the gap (a wall the grower stopped metres short of a
+//    corner, seen at grazing angles).
 //
 // The result's lines are chained at shared ends into polylines; a chain that returns to its start
 // is closed (a room's outline when every wall of it was grown).
@@ -32,14 +35,16 @@
 namespace plumb::cad {
 
 struct FloorPlanOptions {
-  double height_m = 0.0;          // world z of the section plane
-  double max_tilt_deg = 5.0;      // a segment is a wall face when its normal is this close to horizontal
-  double min_opening_m = 0.3;     // narrower gaps in a face's outline are closed
-  double min_line_m = 0.02;       // shorter stretches are dropped
-  double join_gap_m = 1.0;        // the most an end moves to meet another face's at their crossing
+  double height_m = 0.0;       // world z of the section plane
+  double max_tilt_deg = 5.0;   // a segment is a wall face when its normal is this close to horizontal
+  double min_opening_m = 0.3;  // narrower gaps in a face's outline are closed
+  double min_line_m = 0.02;    // shorter stretches are dropped
+  double join_gap_m = 1.0;     // the most an end moves to meet another face's at their crossing
+  // ... and the most an outer end moves to a corner when nothing lies across the gap
+  double join_reach_m = 3.0;
   double min_join_angle_deg = 20.0;  // faces closer to parallel do not join
-  double min_thickness_m = 0.03;  // two parallel faces this far apart, or farther, ...
-  double max_thickness_m = 0.6;   // ... up to this, are the two faces of one wall
+  double min_thickness_m = 0.03;     // two parallel faces this far apart, or farther, ...
+  double max_thickness_m = 0.6;      // ... up to this, are the two faces of one wall
 };
 
 // A stretch of a wall face cut by the section: world coordinates, z = the section's height.

@@ -67,8 +67,8 @@ TEST(FloorPlan, ARoomsWallsCloseAtTheirPlanesCornersWherePointsStopShort) {
   const PlanChain& chain = plan.chains[0];
   EXPECT_TRUE(chain.closed);
   ASSERT_EQ(chain.vertices.size(), 4u);
-  for (const Eigen::Vector3d& corner : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 0, 0), Eigen::Vector3d(4, 3, 0),
-                                        Eigen::Vector3d(0, 3, 0)}) {
+  for (const Eigen::Vector3d& corner :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 0, 0), Eigen::Vector3d(4, 3, 0), Eigen::Vector3d(0, 3, 0)}) {
     const Eigen::Vector3d want = kOffset + corner + Eigen::Vector3d(0, 0, kHeight);
     double nearest = 1e9;
     for (const Eigen::Vector3d& v : chain.vertices) nearest = std::min(nearest, (v - want).norm());
@@ -83,11 +83,45 @@ TEST(FloorPlan, EndsFartherThanTheJoinGapStayOpen) {
   for (const PlanChain& chain : plan.chains) EXPECT_FALSE(chain.closed);
 }
 
+// A corridor 8 x 2 m whose long walls stop 2.5 m short of its ends (seen at grazing angles): they
+// reach its end walls across the empty gaps, unless a face lies across a gap or the reach is off.
+TEST(FloorPlan, AWallStoppedFarShortOfACornerReachesItAcrossAnEmptyGap) {
+  const auto corridor = [](bool partition_across) {
+    Project project;
+    project.segments.push_back(wallFace(1, {0, 0, 0}, {8, 0, 0}, {rectangle(2.5, 5.5, 0.05, 2.45)}));
+    project.segments.push_back(wallFace(2, {8, 0, 0}, {8, 2, 0}, {rectangle(0.1, 1.9, 0.05, 2.45)}));
+    project.segments.push_back(wallFace(3, {8, 2, 0}, {0, 2, 0}, {rectangle(2.5, 5.5, 0.05, 2.45)}));
+    project.segments.push_back(wallFace(4, {0, 2, 0}, {0, 0, 0}, {rectangle(0.1, 1.9, 0.05, 2.45)}));
+    // A short partition standing across the gap of wall 1 at x = 1 m.
+    if (partition_across) project.segments.push_back(wallFace(5, {1, -0.5, 0}, {1, 0.5, 0}, {rectangle(0, 1, 0, 2)}));
+    return project;
+  };
+  const FloorPlan plan = floorPlanAt(corridor(false), {.height_m = kOffset.z() + kHeight});
+  EXPECT_EQ(plan.joins, 4u);
+  ASSERT_EQ(plan.chains.size(), 1u);
+  EXPECT_TRUE(plan.chains[0].closed);
+  for (const Eigen::Vector3d& v : plan.chains[0].vertices) {
+    const Eigen::Vector3d local = v - kOffset;
+    EXPECT_TRUE((std::abs(local.x()) < 1e-9 || std::abs(local.x() - 8) < 1e-9) &&
+                (std::abs(local.y()) < 1e-9 || std::abs(local.y() - 2) < 1e-9))
+        << "a corner off the corridor's: " << local.transpose();
+  }
+  // A face across the gap (x = 1): wall 1 does not reach past it to the x = 0 end.
+  const FloorPlan blocked = floorPlanAt(corridor(true), {.height_m = kOffset.z() + kHeight});
+  std::size_t closed = 0;
+  for (const PlanChain& chain : blocked.chains) closed += chain.closed ? 1u : 0u;
+  EXPECT_EQ(closed, 0u);
+  // No reach beyond the join gap: four open lines.
+  const FloorPlan near = floorPlanAt(corridor(false), {.height_m = kOffset.z() + kHeight, .join_reach_m = 0.0});
+  EXPECT_EQ(near.joins, 0u);
+  EXPECT_EQ(near.chains.size(), 4u);
+}
+
 // A wall with a door 0.9 m wide and 2 m high: cut at 1.2 m it has an opening, at 2.2 m none.
 TEST(FloorPlan, ADoorCutBySectionIsAnOpening) {
   Project project;
-  project.segments.push_back(wallFace(
-      1, {0, 0, 0}, {4, 0, 0}, {{{0, 0}, {1, 0}, {1, 2}, {1.9, 2}, {1.9, 0}, {4, 0}, {4, 2.5}, {0, 2.5}}}));
+  project.segments.push_back(
+      wallFace(1, {0, 0, 0}, {4, 0, 0}, {{{0, 0}, {1, 0}, {1, 2}, {1.9, 2}, {1.9, 0}, {4, 0}, {4, 2.5}, {0, 2.5}}}));
   const FloorPlan low = floorPlanAt(project, {.height_m = kOffset.z() + kHeight});
   ASSERT_EQ(low.lines.size(), 2u);
   ASSERT_EQ(low.openings.size(), 1u);
@@ -173,8 +207,8 @@ TEST(FloorPlan, FloorsTiltedPlanesAndSegmentsWithoutOutlineAreNotWalls) {
 // polyline at the section's height, the opening on its own layer.
 TEST(FloorPlan, TheDxfReadsBackInEzdxfAndTheSvgIsToScale) {
   Project project = room(0.12);
-  project.segments[0].outline.shape.rings = {{{0.12, 0.05}, {1.0, 0.05}, {1.0, 2.0}, {1.9, 2.0}, {1.9, 0.05},
-                                             {3.88, 0.05}, {3.88, 2.45}, {0.12, 2.45}}};
+  project.segments[0].outline.shape.rings = {
+      {{0.12, 0.05}, {1.0, 0.05}, {1.0, 2.0}, {1.9, 2.0}, {1.9, 0.05}, {3.88, 0.05}, {3.88, 2.45}, {0.12, 2.45}}};
   const FloorPlan plan = floorPlanAt(project, {.height_m = kOffset.z() + kHeight});
   ASSERT_EQ(plan.openings.size(), 1u);
   test::TempDirectory dir;
@@ -189,8 +223,8 @@ TEST(FloorPlan, TheDxfReadsBackInEzdxfAndTheSvgIsToScale) {
   }
   if (python) {
     const std::string out = dir.file("dxf.json");
-    ASSERT_EQ(std::system((*python + " " + PLUMB_SOURCE_DIR + "/tests/cad/read_dxf.py " + dxf_path + " >" + out).c_str()),
-              0);
+    ASSERT_EQ(
+        std::system((*python + " " + PLUMB_SOURCE_DIR + "/tests/cad/read_dxf.py " + dxf_path + " >" + out).c_str()), 0);
     const nlohmann::json dxf = nlohmann::json::parse(test::readFile(out));
     EXPECT_TRUE(dxf["audit_errors"].empty()) << dxf["audit_errors"].dump(1);
     std::size_t closed = 0, openings = 0;

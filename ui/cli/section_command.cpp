@@ -69,6 +69,11 @@ Command addSectionCommand(CLI::App& plumb) {
                   "The most a wall's end moves to meet another wall at their planes' intersection, metres")
       ->check(finiteIn(0.0, 100.0))
       ->capture_default_str();
+  sub->add_option("--join-reach", options->plan.join_reach_m,
+                  "The most a wall's outer end moves to a corner when no other wall lies across the gap, metres "
+                  "(0: as --join-gap)")
+      ->check(finiteIn(0.0, 100.0))
+      ->capture_default_str();
 
   auto run = [options]() -> int {
     if (options->dxf.empty() && options->svg.empty()) throw Error("nothing to write: give --dxf, --svg or both");
@@ -104,10 +109,10 @@ Command addSectionCommand(CLI::App& plumb) {
 
     std::size_t closed = 0;
     for (const cad::PlanChain& chain : plan.chains) closed += chain.closed ? 1u : 0u;
-    std::printf("section at z = %.3f m: %zu wall faces cut, %zu lines, %zu corners joined, %zu closed outlines, "
-                "%zu openings, %zu walls paired\n",
-                plan.height_m, plan.wall_faces, plan.lines.size(), plan.joins, closed, plan.openings.size(),
-                plan.walls.size());
+    std::printf(
+        "section at z = %.3f m: %zu wall faces cut, %zu lines, %zu corners joined, %zu closed outlines, "
+        "%zu openings, %zu walls paired\n",
+        plan.height_m, plan.wall_faces, plan.lines.size(), plan.joins, closed, plan.openings.size(), plan.walls.size());
     for (const cad::PlanWall& wall : plan.walls) {
       std::printf("  wall of segments %llu and %llu: %.1f mm thick\n", static_cast<unsigned long long>(wall.face_a),
                   static_cast<unsigned long long>(wall.face_b), wall.thickness_m * 1e3);
