@@ -19,7 +19,9 @@ class SectionCli : public ::testing::Test {
  protected:
   void SetUp() override { plumb::cad::writeProjectFile(plumb::cad::test::sampleProject(), project_); }
 
-  Outcome plumbSection(const std::string& arguments) const { return plumb::test::runPlumb(temp_, "section " + arguments); }
+  Outcome plumbSection(const std::string& arguments) const {
+    return plumb::test::runPlumb(temp_, "section " + arguments);
+  }
   std::string path(const std::string& name) const { return temp_.file(name); }
 
   plumb::test::TempDirectory temp_;
@@ -51,6 +53,7 @@ TEST_F(SectionCli, WithoutAFloorAboveFloorIsAnError) {
   project.edges.clear();
   project.corners.clear();
   project.polygons.clear();
+  project.measurements.clear();
   plumb::cad::writeProjectFile(project, project_);
   const Outcome run = plumbSection(project_ + " --height 1.0 --above-floor --svg " + path("plan.svg"));
   EXPECT_EQ(run.exit_code, 1);

@@ -261,8 +261,8 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
 
 // A slice (plumb view --slice) keeps a band of the room: seen from above, a click on the
 // ceiling's place finds nothing to grow (ceiling and floor are cut away, so nothing is picked),
-// while a click on a wall inside the band grows the wall; Page Down steps the slice; the saved
-// project keeps it.
+// while a click on a wall inside the band grows the wall; Page Down steps the slice; X clips at
+// the selected wall; the saved project keeps the slice and the plane.
 TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
   const plumb::test::TempDirectory dir;
   const fs::path ply = dir.file("room.ply"), scene = dir.file("scene.json");
@@ -280,6 +280,13 @@ TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
       {{"click_world", json::array({2.0, 5.0, 1.1})}},  // the y = 5 m wall, beside the window
       {{"wait", "grower_idle"}, {"timeout_s", 300}},
       {{"screenshot", "slice.png"}},
+      // The wall selected (from the iso view: from above a wall is edge on), X: a clip plane on it
+      // keeps the side the view is on, the room's.
+      {{"key", "4"}},
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"tool", "navigate"}},
+      {{"click_world", json::array({2.0, 5.0, 1.1})}},
+      {{"key", "X"}},
       {{"key_down", "LEFT_CONTROL"}},
       {{"key", "S"}},  // the project keeps the section
       {{"key_up", "LEFT_CONTROL"}},
@@ -298,6 +305,10 @@ TEST(Viewer, ASliceKeepsItsBandAndOnlyItsPointsArePicked) {
   const json project = readJson(ply.string() + ".plumbproj");
   EXPECT_NEAR(project.at("section").at("slice").at("bottom_z").get<double>(), 1.05, 1e-9);
   EXPECT_NEAR(project.at("section").at("slice").at("thickness").get<double>(), 0.1, 1e-12);
+  const json& planes = project.at("section").at("planes");
+  ASSERT_EQ(planes.size(), 1u) << "the clip plane at the selected wall";
+  EXPECT_NEAR(vector3(planes[0].at("normal")).y(), -1.0, 0.01) << "keeping the room's side, where the view is";
+  EXPECT_NEAR(vector3(planes[0].at("point")).y(), 5.0, 0.01);
 }
 
 // The clip box's handles dragged in the view: a face moved in (the opposite face stays), the

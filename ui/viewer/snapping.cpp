@@ -10,6 +10,9 @@
 namespace plumb::viewer {
 namespace {
 
+// A plane whose normal is this close to perpendicular to the ray (about 3 degrees) is seen edge on.
+constexpr double kEdgeOnSine = 0.05;
+
 // The point of segment [a, b] nearest to c, as the fraction t along it, clamped to [0, 1].
 double nearestFraction(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const Eigen::Vector2d ab = b - a;
@@ -96,7 +99,29 @@ std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera
   });
   if (best) return best;
 
-  // 3. Planes: the nearest hit of the ray on a segment's plane inside its outline.
+  // 3. A plane seen edge on (a wall in a plan view), as an edge: its outline drawn as a line,
+  // within the radius; the point of the outline's edge nearest the cursor.
+  registry.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
+    if (!options.planes || !segment.outline || !segment.plane.valid) return;
+    if (std::abs(segment.plane.normal.dot(ray.direction)) > kEdgeOnSine) return;
+    const reco::PlaneOutline& outline = *segment.outline;
+    for (const auto& ring : outline.shape.rings) {
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Eigen::Vector3d a = outline.origin + ring[i].x() * outline.axis_u + ring[i].y() * outline.axis_v;
+        const Eigen::Vector2d& next = ring[(i + 1) % ring.size()];
+        const Eigen::Vector3d b = outline.origin + next.x() * outline.axis_u + next.y() * outline.axis_v;
+        const std::optional<Eigen::Vector2d> pa = view::pixelOf(camera, a), pb = view::pixelOf(camera, b);
+        if (!pa || !pb) continue;
+        const double t = nearestFraction(*pa, *pb, cursor);
+        const double distance = (*pa + t * (*pb - *pa) - cursor).norm();
+        if (distance > options.radius_px || (best && distance >= best->distance_px)) continue;
+        best = Snap{Snap::Kind::kPlane, a + t * (b - a), entity, distance};
+      }
+    }
+  });
+  if (best) return best;
+
+  // 4. Planes: the nearest hit of the ray on a segment's plane inside its outline.
   double nearest_hit = std::numeric_limits<double>::infinity();
   registry.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
     if (!options.planes || !segment.outline || !segment.plane.valid) return;
@@ -111,7 +136,7 @@ std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera
   });
   if (best) return best;
 
-  // 4. A point of the cloud.
+  // 5. A point of the cloud.
   if (pick_point) {
     if (const std::optional<Eigen::Vector3d> point = pick_point(x_px, y_px)) {
       const std::optional<Eigen::Vector2d> pixel = view::pixelOf(camera, *point);

@@ -1,9 +1,10 @@
 #pragma once
 // Cursor snapping (paper section 4.2): what the pointer means in a drawing tool. In priority
 // order, within a pixel radius: a corner or a drawn polygon's vertex (the nearer), a point on an
-// edge within its support range, a point on a segment's plane inside its outline, a point of
-// the cloud. Corners and edges come from the
-// planes, not from the points, so a corner in a scan shadow is still a corner.
+// edge within its support range, a point on the outline of a plane seen edge on (a wall in a
+// plan view), a point on a segment's plane inside its outline, a point of the cloud.
+// Corners and edges come from the planes, not from the points, so a corner in a scan shadow is
+// still a corner.
 
 #include <Eigen/Core>
 #include <functional>

@@ -654,6 +654,8 @@ void Viewer::handleViewEvent(const InputEvent& event) {
           return;
         case GLFW_KEY_K:
           return cornerOfSelected();
+        case GLFW_KEY_X:
+          return clipAtSelectedPlane();
         case GLFW_KEY_PAGE_UP:
         case GLFW_KEY_PAGE_DOWN:
           // The slice steps through the building by its thickness; without one, the slab along
@@ -807,6 +809,21 @@ void Viewer::showElevationOfSelected() {
   // The view spans the segment, a little more (its outline's area gives its size).
   const double height_m = std::max(1.0, 1.5 * std::sqrt(std::max(segment->area_m2, 0.0)));
   cloud_->navigator->showElevation(segment->plane.centroid, segment->plane.normal, height_m);
+}
+
+// A clip plane at the one selected segment's plane, keeping the side the view is on.
+void Viewer::clipAtSelectedPlane() {
+  const Segment* segment = theSelectedSegment("clip plane");
+  if (!cloud_ || segment == nullptr) return;
+  const view::ClipRegion region = clip_.region();
+  if (region.planes.size() + (region.box ? 6 : 0) >= view::ClipRegion::kMaxPlanes) {
+    scene_.registry().patch<ToolState>(scene_.toolEntity(), [](ToolState& t) {
+      t.drawing.message = "clip plane: no more planes (at most 32, with a slice's two and a box's six)";
+    });
+    return;
+  }
+  const reco::Plane facing = segment->plane.orientedTowards(cloud_->navigator->camera().position);
+  clip_.planes.push_back({facing.centroid, facing.normal.normalized()});
 }
 
 void Viewer::groupSelected() {

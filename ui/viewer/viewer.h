@@ -133,6 +133,7 @@ class Viewer {
   void drawSectionControls();
   void drawClipPlaneControls();
   void showElevationOfSelected();
+  void clipAtSelectedPlane();
   // The one selected segment, else null with a message that `what` needs one.
   const Segment* theSelectedSegment(const std::string& what);
   void drawProjectPanel();

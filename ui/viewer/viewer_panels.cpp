@@ -534,20 +534,8 @@ void Viewer::drawSectionControls() {
 
 // Clip planes: each keeps one side of a selected segment's plane, the side the view is on.
 void Viewer::drawClipPlaneControls() {
-  if (ImGui::Button("Clip at plane")) {
-    if (const Segment* segment = theSelectedSegment("clip plane")) {
-      const view::ClipRegion region = clip_.region();
-      if (region.planes.size() + (region.box ? 6 : 0) >= view::ClipRegion::kMaxPlanes) {
-        scene_.registry().patch<ToolState>(scene_.toolEntity(), [](ToolState& t) {
-          t.drawing.message = "clip plane: no more planes (at most 32, with a slice's two and a box's six)";
-        });
-      } else {
-        const reco::Plane facing = segment->plane.orientedTowards(cloud_->navigator->camera().position);
-        clip_.planes.push_back({facing.centroid, facing.normal.normalized()});
-      }
-    }
-  }
-  tooltip("Keep the side of the selected segment's plane that the view is on: a wall cut away to see the room");
+  if (ImGui::Button("Clip at plane")) clipAtSelectedPlane();
+  tooltip("Keep the side of the selected segment's plane that the view is on: a wall cut away to see the room (X)");
   std::optional<std::size_t> removed;
   for (std::size_t i = 0; i < clip_.planes.size(); ++i) {
     view::ClipPlane& plane = clip_.planes[i];

@@ -69,6 +69,33 @@ TEST_F(SnappingTest, InsideAnOutlineTheSnapLiesOnThePlane) {
   EXPECT_NEAR((snap->position - on_floor).norm(), 0.0, 1e-6);
 }
 
+// From straight above (a plan view, orthographic) the walls are edge on: no ray meets them, and a
+// click beside a wall's line takes the wall, at the point of its outline nearest the cursor.
+TEST_F(SnappingTest, AWallSeenEdgeOnSnapsNearItsLine) {
+  camera_.projection = view::Projection::kOrthographic;
+  camera_.position = {1.0, 1.0, 20.0};
+  camera_.target = {1.0, 1.0, 0.0};
+  camera_.up = Eigen::Vector3d::UnitY();
+  camera_.ortho_height_m = 4.0;
+  // Beside the wall x = 0 (segment 0), 6 pixels into the room, at y = 1.3 m; corners and edges
+  // off, as a plane-only measurement asks.
+  const Eigen::Vector2d at = pixelOf({0.0, 1.3, 2.0}) + Eigen::Vector2d(6, 0);
+  SnapOptions planes_only;
+  planes_only.corners = planes_only.edges = false;
+  const std::optional<Snap> snap = snapCursor(registry_, camera_, at.x(), at.y(), no_points_, planes_only);
+  ASSERT_TRUE(snap);
+  EXPECT_EQ(snap->kind, Snap::Kind::kPlane);
+  EXPECT_EQ(snap->source, segments_[0]);
+  EXPECT_NEAR(snap->position.x(), 0.0, 1e-9) << "on the wall's plane";
+  EXPECT_NEAR(snap->position.y(), 1.3, 1e-6);
+  EXPECT_NEAR(snap->distance_px, 6.0, 1e-6);
+  // Far from every wall's line: the floor, seen face on.
+  const Eigen::Vector2d middle = pixelOf({1.0, 1.0, 0.0});
+  const std::optional<Snap> floor = snapCursor(registry_, camera_, middle.x(), middle.y(), no_points_, planes_only);
+  ASSERT_TRUE(floor);
+  EXPECT_EQ(floor->source, segments_[2]);
+}
+
 TEST_F(SnappingTest, OutsideEveryFeatureAPointOfTheCloudOrNothing) {
   const Eigen::Vector3d away(3.0, 3.0, 0.0);  // beyond the floor's outline
   const Eigen::Vector2d at = pixelOf(away);
