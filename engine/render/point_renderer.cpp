@@ -299,9 +299,24 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                  const gpu::SwapchainImage* present_to) {
   Resources& r = *resources_;
   view::validateCamera(camera);
-  // Before the frame begins: a throw later would leave its submission unsent.
   if (settings.clip.active()) view::checkClipRegion(settings.clip, "render");
   const std::uint64_t value = ++r.submitted;
+  // A frame that throws once it has its timeline value (a node that fails to load) must still
+  // signal it, after the frames before it, or every later frame and readback would wait for it
+  // forever.
+  struct SignalIfUnsent {
+    Resources& r;
+    std::uint64_t value;
+    bool sent = false;
+    ~SignalIfUnsent() {
+      if (sent) return;
+      try {
+        r.timeline.wait(value - 1, kNoTimeout);
+        r.timeline.signalFromHost(value);
+      } catch (...) {  // a destructor does not throw; the device is lost then anyway
+      }
+    }
+  } unsent{r, value};
   FrameStats stats;
   stats.frame = ++r.frames;
 
@@ -472,6 +487,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   } else {
     gpu::submit(r.device, commands, r.timeline, value);
   }
+  unsent.sent = true;
   r.last_frame_value = value;
 
   // 5. Evict.

@@ -19,6 +19,7 @@
 #include "engine/gpu/memory.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
+#include "engine/lod/octree_format.h"
 #include "engine/render/palette.h"
 #include "tests/engine/render/render_scene.h"
 #include "tests/support/gpu_test.h"
@@ -420,6 +421,23 @@ TEST_F(PointRendererTest, AClipBoxAndASliceKeepOnlyTheirPoints) {
 
   settings.clip.planes.push_back({offset, Eigen::Vector3d(0.5, 0.0, 0.0)});  // not a unit normal
   EXPECT_THROW(renderer.renderComplete(camera, settings), Error);
+}
+
+// A node that fails to load in the middle of a frame (a corrupt file) makes render throw; the
+// frames after it must not wait forever for the one that threw (each would wait for the frame two
+// before it), and a readback still works.
+TEST_F(PointRendererTest, AFrameThatThrowsDoesNotStopTheFramesAfterIt) {
+  std::string bytes = plumb::test::readFile(directory_->file("walls.plumb"));
+  bytes[lod::kHeaderBytes + 5] ^= 0x10;  // a byte of the root node's points: its checksum fails
+  const std::string corrupt = directory_->file("corrupt.plumb");
+  plumb::test::writeFile(corrupt, bytes);
+  lod::NodeCache nodes(lod::Octree::open(corrupt), 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = test::wallSceneFront(kWidth, kHeight, far_offset_);
+  for (int frame = 0; frame < 4; ++frame) {
+    EXPECT_THROW(renderer.render(camera, flat(), NodeLoading::kWait), Error) << "frame " << frame;
+  }
+  EXPECT_EQ(renderer.readColour().width, kWidth);
 }
 
 TEST_F(PointRendererTest, PickingReturnsTheVisiblePointInWorldCoordinates) {
