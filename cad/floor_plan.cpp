@@ -130,6 +130,10 @@ bool crossesStretch(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Fa
 
 using EndKey = std::tuple<std::size_t, std::size_t, std::size_t>;
 
+// How far a wall's stretch may run past a corner's crossing and still end there (its outline
+// reaches into the other wall's noise).
+constexpr double kCornerOvershoot = 0.1;  // metres
+
 // Step 3, for what the join gap leaves open: a face's outer end, still free, that stops short of
 // its line's crossing with another face by more than the join gap but at most join_reach_m moves
 // to the crossing when the other face has a free end within the join gap of it (a corner, not a T)
@@ -158,11 +162,16 @@ std::size_t joinAcrossEmptyGaps(std::vector<FaceLine>& faces, const FloorPlanOpt
         // Beyond the end, along the line's continuation.
         const double gap = end.end == 0 ? end.at(faces) - ti : ti - end.at(faces);
         if (gap <= options.join_gap_m || gap > options.join_reach_m) continue;
+        // The other face's end nearest the crossing, within the join gap, with the crossing at or
+        // beyond it (a corner; a crossing well inside its stretch is a T, or a wall across).
         std::optional<EndRef> near;
         for (std::size_t s = 0; s < faces[j].stretches.size(); ++s) {
           for (std::size_t e = 0; e < 2; ++e) {
             const EndRef other{j, s, e};
-            if (!moved[key(other)] && std::abs(other.at(faces) - tj) <= options.join_gap_m) near = other;
+            const double off = std::abs(other.at(faces) - tj);
+            const double inside = e == 0 ? tj - other.at(faces) : other.at(faces) - tj;
+            if (moved[key(other)] || off > options.join_gap_m || inside > kCornerOvershoot) continue;
+            if (!near || off < std::abs(near->at(faces) - tj)) near = other;
           }
         }
         if (!near) continue;

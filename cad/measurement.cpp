@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "cad/polygon_mesh.h"
 #include "cad/project_validation.h"
@@ -15,7 +16,7 @@ namespace {
 
 using TermKind = MeasureTerm::Kind;
 
-constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 
 constexpr std::array<MeasureKind, 6> kKinds{MeasureKind::kDistance,     MeasureKind::kAngle,
                                             MeasureKind::kPointToPlane, MeasureKind::kBetweenPlanes,
@@ -32,7 +33,7 @@ double acuteAngle(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
 double angleBetween(const MeasureTerm& a, const MeasureTerm& b) {
   const double between = acuteAngle(a.direction, b.direction);
   // A line and a plane: the line's angle to the plane is the complement of its angle to the normal.
-  return a.kind == b.kind ? between : 0.5 * 3.14159265358979323846 - between;
+  return a.kind == b.kind ? between : 0.5 * std::numbers::pi - between;
 }
 
 // The mean of two near-parallel unit normals, the second turned to agree with the first.

@@ -167,11 +167,17 @@ MeasureTerm readMeasureTerm(const JsonPlace& at) {
   const std::optional<MeasureTerm::Kind> named = measureTermKindNamed(kind.string());
   if (!named) throw kind.error("expected \"point\", \"plane\", \"line\" or \"polygon\"");
   term.kind = *named;
+  // Only the fields of its kind: a point's direction would be silently dropped otherwise.
   if (term.kind == MeasureTerm::Kind::kPolygon) {
+    at.expectObject({"kind", "ring"});
     term.ring = readPoints3(at.field("ring"));
-  } else {
+  } else if (term.kind == MeasureTerm::Kind::kPoint) {
+    at.expectObject({"kind", "point"});
     term.point = at.field("point").vector3();
-    if (term.kind != MeasureTerm::Kind::kPoint) term.direction = at.field("direction").vector3();
+  } else {
+    at.expectObject({"kind", "point", "direction"});
+    term.point = at.field("point").vector3();
+    term.direction = at.field("direction").vector3();
   }
   return term;
 }
@@ -189,8 +195,12 @@ Measurement readMeasurement(const JsonPlace& at) {
         "expected \"distance\", \"angle\", \"point_to_plane\", \"between_planes\", \"height\" or \"area\"");
   }
   measurement.kind = *named;
-  measurement.terms = readList(at, "terms", readMeasureTerm);
-  measurement.sources = readList(at, "sources", [](const JsonPlace& v) { return v.whole(); });
+  const JsonPlace terms = at.field("terms");
+  measurement.terms.resize(terms.expectArray());
+  for (std::size_t i = 0; i < measurement.terms.size(); ++i) measurement.terms[i] = readMeasureTerm(terms.element(i));
+  const JsonPlace sources = at.field("sources");
+  measurement.sources.resize(sources.expectArray());
+  for (std::size_t i = 0; i < measurement.sources.size(); ++i) measurement.sources[i] = sources.element(i).whole();
   return measurement;
 }
 
@@ -331,7 +341,8 @@ view::ClipSettings readSection(const JsonPlace& at) {
 OrderedJson projectJson(const Project& project) {
   OrderedJson json;
   json["format"] = kFormat;
-  json["version"] = kProjectFileVersion;
+  // The oldest version that holds the project, so that older builds still read what they can.
+  json["version"] = project.measurements.empty() ? 2 : kProjectFileVersion;
   json["cloud"] = project.cloud_path;
   if (project.camera) json["camera"] = OrderedJson::parse(view::cameraJsonObject(*project.camera));
   if (project.section && project.section->active()) json["section"] = sectionJson(*project.section);

@@ -109,8 +109,10 @@ TEST(ExportCsv, MeasurementsWithTheirValuesAndDimensionLines) {
       EXPECT_EQ(std::stod(row[static_cast<std::size_t>(7 + axis)]), value.from[axis]);
       EXPECT_EQ(std::stod(row[static_cast<std::size_t>(10 + axis)]), value.to[axis]);
     }
-    EXPECT_EQ(row[13], std::to_string(m.sources[0]));
-    EXPECT_EQ(row[14], m.sources.size() > 1 && m.sources[1] != kNoItem ? std::to_string(m.sources[1]) : "");
+    for (std::size_t k = 0; k < 2; ++k) {
+      const ItemId source = k < m.sources.size() ? m.sources[k] : kNoItem;
+      EXPECT_EQ(row[13 + k], source != kNoItem ? std::to_string(source) : "") << "an empty field for none";
+    }
   }
   EXPECT_EQ(records[6][2], "area");
   EXPECT_EQ(std::stod(records[6][5]), 5.0) << "the L's perimeter";

@@ -24,10 +24,8 @@ using test::kOffset;
 using test::TrueWall;
 
 // The room (docs/simulator.md): its four walls.
-const std::vector<TrueWall> kRoomWalls{{{0.0, 2.5, 1.2}, 0, 0.0},
-                                       {{3.5, 0.0, 1.2}, 1, 0.0},
-                                       {{7.0, 2.5, 1.2}, 0, 7.0},
-                                       {{1.5, 5.0, 1.6}, 1, 5.0}};
+const std::vector<TrueWall> kRoomWalls{
+    {{0.0, 2.5, 1.2}, 0, 0.0}, {{3.5, 0.0, 1.2}, 1, 0.0}, {{7.0, 2.5, 1.2}, 0, 7.0}, {{1.5, 5.0, 1.6}, 1, 5.0}};
 
 // Above the window and the door: the four walls make one closed outline whose corners are the
 // room's, and every line lies on its true wall, within 2 mm.
@@ -61,14 +59,29 @@ TEST(FloorPlanOfGrownWalls, TheRoomClosesOnItsTrueCornersAndTheWindowIsAnOpening
     if (opening.segment == 4) window = &opening;
   }
   ASSERT_NE(window, nullptr) << sill.openings.size() << " openings";
-  std::printf("window opening: %.3f m wide, from x %.3f to %.3f m\n", window->width_m,
-              (window->start - kOffset).x(), (window->end - kOffset).x());
+  std::printf("window opening: %.3f m wide, from x %.3f to %.3f m\n", window->width_m, (window->start - kOffset).x(),
+              (window->end - kOffset).x());
   constexpr double kSpacing = 0.056;
   EXPECT_LT(window->width_m, 1.8 + 0.005);
   EXPECT_GT(window->width_m, 1.8 - 2.0 * kSpacing);
   const double from = std::min((window->start - kOffset).x(), (window->end - kOffset).x());
   EXPECT_GT(from, 2.5 - 0.005);
   EXPECT_LT(from, 2.5 + kSpacing);
+  // The 2 m cabinet hides 1.2 m of the y+ wall at this height, more than the join gap: the wall
+  // reaches the corner (0, 5) across the empty gap and meets the x- wall there, so the outline is
+  // whole but for the door and the window.
+  const auto meetsAtCabinetCorner = [&](const FloorPlan& cut) {
+    const Eigen::Vector3d corner = kOffset + Eigen::Vector3d(0.0, 5.0, 1.2);
+    std::size_t ends = 0;
+    for (const PlanLine& line : cut.lines) {
+      ends += (line.start - corner).norm() < 0.002 || (line.end - corner).norm() < 0.002 ? 1u : 0u;
+    }
+    return ends == 2;
+  };
+  EXPECT_TRUE(meetsAtCabinetCorner(sill));
+  EXPECT_EQ(sill.chains.size(), 2u) << "split by the door and the window only";
+  EXPECT_FALSE(meetsAtCabinetCorner(floorPlanAt(project, {.height_m = kOffset.z() + 1.2, .join_reach_m = 0.0})))
+      << "without the reach, the corner behind the cabinet stays open";
 
   // PLUMB_TEST_IMAGES=DIR keeps both plans' drawings there for a person to look at.
   if (const char* keep = std::getenv("PLUMB_TEST_IMAGES")) {

@@ -106,11 +106,20 @@ TEST(FloorPlan, AWallStoppedFarShortOfACornerReachesItAcrossAnEmptyGap) {
                 (std::abs(local.y()) < 1e-9 || std::abs(local.y() - 2) < 1e-9))
         << "a corner off the corridor's: " << local.transpose();
   }
-  // A face across the gap (x = 1): wall 1 does not reach past it to the x = 0 end.
+  // A face across the gap (x = 1): wall 1 does not reach past it to the x = 0 end, nor is the
+  // partition, which it crosses in its middle, taken for a corner and cut.
   const FloorPlan blocked = floorPlanAt(corridor(true), {.height_m = kOffset.z() + kHeight});
   std::size_t closed = 0;
   for (const PlanChain& chain : blocked.chains) closed += chain.closed ? 1u : 0u;
   EXPECT_EQ(closed, 0u);
+  for (const PlanLine& line : blocked.lines) {
+    if (line.segment == 5) {
+      EXPECT_NEAR((line.end - line.start).norm(), 1.0, 1e-9) << "the partition whole";
+    }
+    if (line.segment == 1) {
+      EXPECT_GT(std::min(line.start.x(), line.end.x()) - kOffset.x(), 2.0) << "wall 1 stays";
+    }
+  }
   // No reach beyond the join gap: four open lines.
   const FloorPlan near = floorPlanAt(corridor(false), {.height_m = kOffset.z() + kHeight, .join_reach_m = 0.0});
   EXPECT_EQ(near.joins, 0u);

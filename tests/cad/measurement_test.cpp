@@ -114,7 +114,7 @@ TEST(Measure, AHeightIsVerticalAboveTheFloorUnderThePoint) {
 }
 
 TEST(Measure, AreaAndPerimeterOfAConcavePolygonAnywhere) {
-  // An L of 1.5 m^2, perimeter 6 m, stood up in a wall at 40 degrees to x.
+  // An L of 1.5 m^2, perimeter 7 m, stood up in a wall at 40 degrees to x.
   std::vector<Eigen::Vector3d> ring;
   const Eigen::Matrix3d to_wall = Eigen::AngleAxisd(40.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
                                   Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();

@@ -218,6 +218,18 @@ TEST(ProjectFile, KeepsTheViewsSection) {
   EXPECT_FALSE(readProjectFile(path).section.has_value());
 }
 
+// A project without measurements is written as version 2, which the builds before them read.
+TEST(ProjectFile, WithoutMeasurementsItIsVersionTwo) {
+  plumb::test::TempDirectory directory;
+  const std::string path = directory.file("room.plumbproj");
+  Project project = test::sampleProject();
+  project.measurements.clear();
+  writeProjectFile(project, path);
+  const std::string text = plumb::test::readFile(path);
+  EXPECT_NE(text.find("\"version\": 2,"), std::string::npos) << text.substr(0, 80);
+  EXPECT_EQ(readProjectFile(path).segments.size(), project.segments.size());
+}
+
 TEST(ProjectFile, IsReadableJsonWithFormatAndVersionFirst) {
   plumb::test::TempDirectory directory;
   const std::string path = directory.file("room.plumbproj");
@@ -330,7 +342,10 @@ TEST_F(ProjectFileErrors, MeasurementsTheRulesRefuse) {
               {"field 'measurements[1].terms[1].kind'", "\"point\", \"plane\", \"line\" or \"polygon\""});
   expectError(errorFor([](nlohmann::json& j) { j["measurements"][0]["terms"].erase(1); }),
               {"field 'measurements[0].terms': Distance takes 2 terms, not 1"});
-  expectError(errorFor([](nlohmann::json& j) { j["measurements"][4]["terms"][0]["kind"] = "point"; }),
+  expectError(errorFor([](nlohmann::json& j) {
+                j["measurements"][4]["terms"][0]["kind"] = "point";
+                j["measurements"][4]["terms"][0].erase("direction");
+              }),
               {"field 'measurements[4].terms': Height: term 1 must be a plane, not a point"});
   expectError(errorFor([](nlohmann::json& j) {
                 j["measurements"][3]["terms"][1]["direction"] = {0.0, 1.0, 0.0};
@@ -355,6 +370,12 @@ TEST_F(ProjectFileErrors, MeasurementsTheRulesRefuse) {
               {"field 'measurements[0].sources[1]': refers to id 2, which is a group (groups[1])"});
   expectError(errorFor([](nlohmann::json& j) { j["measurements"][0]["sources"][1] = 99; }),
               {"field 'measurements[0].sources[1]': refers to id 99, which no item of the project has"});
+  expectError(errorFor([](nlohmann::json& j) {
+                j["measurements"][0]["terms"][0]["direction"] = {1.0, 0.0, 0.0};
+              }),
+              {"field 'measurements[0].terms[0].direction': unknown field"});
+  expectError(errorFor([](nlohmann::json& j) { j["measurements"][0].erase("sources"); }),
+              {"field 'measurements[0].sources': missing"});
   expectError(errorFor([](nlohmann::json& j) { j["measurements"][2]["id"] = 30; }),
               {"field 'measurements[2].id': id 30 is already the id of corners[0]"});
 }

@@ -234,8 +234,10 @@ TEST(Viewer, APointFileIsImportedAndAClickNearACornerFindsIt) {
   const plumb::test::PlaneLimit ceiling = simulated.planeLimit("room ceiling", on_ceiling);
   const double degrees = 180.0 / M_PI;
   // From the snapped corner to the y+ wall's plane: the corner's error and the wall's together.
-  const json& distance = taken.at(0);
-  EXPECT_EQ(distance.at("sources").at(0).is_null(), false) << "taken on the corner";
+  const json& from_corner = taken.at(0).at("sources").at(0);
+  EXPECT_TRUE(std::any_of(dump.at("corners").begin(), dump.at("corners").end(),
+                          [&](const json& c) { return c.at("id") == from_corner; }))
+      << "taken on the corner: " << from_corner;
   expectMeasured(0, "distance", (on_wall - corner).norm(),
                  k * std::hypot(limit.standard_error_m, wall_y.distance_error_m));
   expectMeasured(1, "between_planes", 2.5, k * std::hypot(floor.distance_error_m, ceiling.distance_error_m));

@@ -24,6 +24,20 @@ bool isFace(BoxHandle handle) {
   return handle != BoxHandle::kCentre && handle != BoxHandle::kTurn;
 }
 
+// A ray within this angle (5 degrees) of what a handle follows, a line along it or the plane it
+// moves in, moves the handle nowhere: nearer parallel, a pixel would move it metres.
+constexpr double kMinDragSine = 0.087;
+
+std::optional<double> alongLine(const Eigen::Vector3d& point, const Eigen::Vector3d& axis, const view::Ray& ray) {
+  if (axis.cross(ray.direction).norm() < kMinDragSine) return std::nullopt;
+  return view::lineParameterNearestRay(point, axis, ray);
+}
+
+std::optional<Eigen::Vector3d> onLevel(const Eigen::Vector3d& point, const view::Ray& ray) {
+  if (std::abs(ray.direction.z()) < kMinDragSine) return std::nullopt;
+  return view::rayHitOnPlane(ray, point, Eigen::Vector3d::UnitZ());
+}
+
 double angleAbout(const Eigen::Vector3d& centre, const Eigen::Vector3d& point) {
   return std::atan2(point.y() - centre.y(), point.x() - centre.x());
 }
@@ -106,13 +120,12 @@ BoxDrag::BoxDrag(const view::ClipBox& box, BoxHandle handle, const view::Ray& pr
   const std::array<Eigen::Vector3d, 3> axes = axesOf(box);
   if (isFace(handle)) {
     const auto [axis, side] = faceOf(handle);
-    grabbed_along_ = view::lineParameterNearestRay(box.centre, axes[static_cast<std::size_t>(axis)], pressed);
+    grabbed_along_ = alongLine(box.centre, axes[static_cast<std::size_t>(axis)], pressed);
   } else if (vertical_) {
-    grabbed_along_ = view::lineParameterNearestRay(box.centre, axes[2], pressed);
+    grabbed_along_ = alongLine(box.centre, axes[2], pressed);
   } else {
     // The centre and the turn handle move in the horizontal plane through the handle.
-    const Eigen::Vector3d on = boxHandlePositions(box)[static_cast<std::size_t>(handle)];
-    grabbed_ = view::rayHitOnPlane(pressed, on, Eigen::Vector3d::UnitZ());
+    grabbed_ = onLevel(boxHandlePositions(box)[static_cast<std::size_t>(handle)], pressed);
   }
 }
 
@@ -121,7 +134,7 @@ view::ClipBox BoxDrag::boxFor(const view::Ray& ray) const {
   const std::array<Eigen::Vector3d, 3> axes = axesOf(start_);
   if (grabbed_along_) {
     const std::size_t axis = isFace(handle_) ? static_cast<std::size_t>(faceOf(handle_).first) : 2;
-    const std::optional<double> along = view::lineParameterNearestRay(start_.centre, axes[axis], ray);
+    const std::optional<double> along = alongLine(start_.centre, axes[axis], ray);
     if (!along) return box;
     const double moved = *along - *grabbed_along_;
     if (!isFace(handle_)) {
@@ -139,8 +152,8 @@ view::ClipBox BoxDrag::boxFor(const view::Ray& ray) const {
     return box;
   }
   if (!grabbed_) return box;
-  const Eigen::Vector3d on = boxHandlePositions(start_)[static_cast<std::size_t>(handle_)];
-  const std::optional<Eigen::Vector3d> hit = view::rayHitOnPlane(ray, on, Eigen::Vector3d::UnitZ());
+  const std::optional<Eigen::Vector3d> hit =
+      onLevel(boxHandlePositions(start_)[static_cast<std::size_t>(handle_)], ray);
   if (!hit) return box;
   if (handle_ == BoxHandle::kCentre) {
     box.centre += Eigen::Vector3d(hit->x() - grabbed_->x(), hit->y() - grabbed_->y(), 0.0);

@@ -46,7 +46,8 @@ std::optional<BoxHandle> boxHandleAt(const view::ClipBox& box, const view::Camer
 
 // A drag of one handle: made at the press with the pointer's ray there, it gives the box for each
 // later ray (the box as it was at the press, changed by how far the pointer went along what the
-// handle follows). A ray that runs parallel to what the handle follows leaves the box as it was.
+// handle follows). A ray within 5 degrees of parallel to what the handle follows (a line, a level
+// plane) leaves the box as it was: a top face dragged from straight above does not move.
 class BoxDrag {
  public:
   BoxDrag(const view::ClipBox& box, BoxHandle handle, const view::Ray& pressed, bool vertical);

@@ -32,21 +32,21 @@ bool keepsFirstTerm(MeasureKind kind) {
 
 }  // namespace
 
+void forgetMeasureTerms(ToolState& tool) {
+  tool.measure_terms.clear();
+  tool.measure_sources.clear();
+  tool.measure_message.clear();
+}
+
 void MeasureTool::setKind(cad::MeasureKind kind) {
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& tool) {
     tool.measure_kind = kind;
-    tool.measure_terms.clear();
-    tool.measure_sources.clear();
-    tool.measure_message.clear();
+    forgetMeasureTerms(tool);
   });
 }
 
 void MeasureTool::escape() {
-  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& tool) {
-    tool.measure_terms.clear();
-    tool.measure_sources.clear();
-    tool.measure_message.clear();
-  });
+  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& tool) { forgetMeasureTerms(tool); });
 }
 
 SnapOptions MeasureTool::snapOptionsFor(const ToolState& tool) {
@@ -56,6 +56,7 @@ SnapOptions MeasureTool::snapOptionsFor(const ToolState& tool) {
     options.corners = false;
     options.edges = wants(kinds, TermKind::kLine);
     options.planes = wants(kinds, TermKind::kPlane);
+    options.edge_on_planes = options.planes;  // a wall in a plan view: its plane is what counts
   }
   return options;
 }
@@ -80,6 +81,11 @@ std::string MeasureTool::prompt(const ToolState& tool) {
 }
 
 void MeasureTool::click(const view::Camera& camera, double x_px, double y_px, const PointPicker& pick_point) {
+  // A term kept from before (a height's floor) whose item an undo or a deletion took away goes too.
+  const ToolState& before = scene_.tool();
+  const bool gone = std::any_of(before.measure_sources.begin(), before.measure_sources.end(),
+                                [&](ecs::Entity e) { return e != ecs::kNullEntity && !scene_.registry().alive(e); });
+  if (gone) escape();
   const ToolState& tool = scene_.tool();
   const std::vector<TermKind> kinds = wantedNext(tool);
   const auto say = [&](std::string message) {
@@ -114,6 +120,13 @@ void MeasureTool::click(const view::Camera& camera, double x_px, double y_px, co
 // Adds `term`; with the last one the kind needs, measures (or says why not).
 void MeasureTool::take(const cad::MeasureTerm& term, ecs::Entity source) {
   ToolState tool = scene_.tool();
+  // One plane or edge twice is no angle and no width.
+  const bool between = tool.measure_kind == MeasureKind::kAngle || tool.measure_kind == MeasureKind::kBetweenPlanes;
+  if (between && source != ecs::kNullEntity && !tool.measure_sources.empty() && tool.measure_sources.back() == source) {
+    scene_.registry().patch<ToolState>(
+        scene_.toolEntity(), [&](ToolState& t) { t.measure_message = "the same plane twice: click another"; });
+    return;
+  }
   tool.measure_terms.push_back(term);
   tool.measure_sources.push_back(source);
   tool.measure_message.clear();

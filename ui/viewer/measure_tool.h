@@ -28,6 +28,9 @@ namespace plumb::viewer {
 class SceneState;
 struct ToolState;
 
+// Forgets the Measure tool's terms and message (the tool changes, Escape, another kind).
+void forgetMeasureTerms(ToolState& tool);
+
 class MeasureTool {
  public:
   explicit MeasureTool(SceneState& scene) : scene_(scene) {}

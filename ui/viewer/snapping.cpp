@@ -100,22 +100,32 @@ std::optional<Snap> snapCursor(const ecs::Registry& registry, const view::Camera
   if (best) return best;
 
   // 3. A plane seen edge on (a wall in a plan view), as an edge: its outline drawn as a line,
-  // within the radius; the point of the outline's edge nearest the cursor.
+  // within the radius; the point of the outline's edge nearest the cursor's ray, of the nearer
+  // edge where edges overlap on screen (a wall's top and bottom seen from above).
+  double best_depth = std::numeric_limits<double>::infinity();
   registry.view<Segment>().each([&](ecs::Entity entity, const Segment& segment) {
-    if (!options.planes || !segment.outline || !segment.plane.valid) return;
+    if (!options.planes || !options.edge_on_planes || !segment.outline || !segment.plane.valid) return;
     if (std::abs(segment.plane.normal.dot(ray.direction)) > kEdgeOnSine) return;
     const reco::PlaneOutline& outline = *segment.outline;
     for (const auto& ring : outline.shape.rings) {
       for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Eigen::Vector3d a = outline.origin + ring[i].x() * outline.axis_u + ring[i].y() * outline.axis_v;
         const Eigen::Vector2d& next = ring[(i + 1) % ring.size()];
+        const Eigen::Vector3d a = outline.origin + ring[i].x() * outline.axis_u + ring[i].y() * outline.axis_v;
         const Eigen::Vector3d b = outline.origin + next.x() * outline.axis_u + next.y() * outline.axis_v;
         const std::optional<Eigen::Vector2d> pa = view::pixelOf(camera, a), pb = view::pixelOf(camera, b);
-        if (!pa || !pb) continue;
+        const double length = (b - a).norm();
+        if (!pa || !pb || length <= 0.0) continue;
         const double t = nearestFraction(*pa, *pb, cursor);
         const double distance = (*pa + t * (*pb - *pa) - cursor).norm();
-        if (distance > options.radius_px || (best && distance >= best->distance_px)) continue;
-        best = Snap{Snap::Kind::kPlane, a + t * (b - a), entity, distance};
+        if (distance > options.radius_px) continue;
+        const Eigen::Vector3d along = (b - a) / length;
+        const double s = std::clamp(view::lineParameterNearestRay(a, along, ray).value_or(t * length), 0.0, length);
+        const Eigen::Vector3d point = a + s * along;
+        const double depth = (point - ray.origin).dot(ray.direction);
+        const bool tied = best && std::abs(distance - best->distance_px) < 0.5;
+        if (best && !(tied ? depth < best_depth : distance < best->distance_px)) continue;
+        best = Snap{Snap::Kind::kPlane, point, entity, distance};
+        best_depth = depth;
       }
     }
   });

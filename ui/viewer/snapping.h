@@ -2,7 +2,8 @@
 // Cursor snapping (paper section 4.2): what the pointer means in a drawing tool. In priority
 // order, within a pixel radius: a corner or a drawn polygon's vertex (the nearer), a point on an
 // edge within its support range, a point on the outline of a plane seen edge on (a wall in a
-// plan view), a point on a segment's plane inside its outline, a point of the cloud.
+// plan view; when asked for), a point on a segment's plane inside its outline, a point of the
+// cloud.
 // Corners and edges come from the planes, not from the points, so a corner in a scan shadow is
 // still a corner.
 
@@ -36,6 +37,9 @@ struct SnapOptions {
   bool corners = true;  // corners and polygon vertices
   bool edges = true;
   bool planes = true;
+  // Planes seen edge on, near their outline's line: where a plane is what is wanted (selecting a
+  // wall, measuring to it in a plan view), not a point (its height there is the outline's edge's).
+  bool edge_on_planes = false;
 };
 
 // The cloud's point under a pixel, if any (the renderer's pick); may be empty.

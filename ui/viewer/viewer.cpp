@@ -563,7 +563,7 @@ void Viewer::handleEvents(const std::vector<InputEvent>& events) {
                        event.kind == InputEvent::Kind::kWheel;
     const bool keyboard = event.kind == InputEvent::Kind::kKey || event.kind == InputEvent::Kind::kCharacter;
     // The palette has the mouse unless a drag on the view is under way (a release must end it).
-    const bool dragging = cloud_ && cloud_->navigator->dragging();
+    const bool dragging = (cloud_ && cloud_->navigator->dragging()) || box_drag_.has_value();
     if (mouse && imgui_.wantsMouse() && !dragging) continue;
     if (keyboard && imgui_.wantsKeyboard()) continue;
     handleViewEvent(event);
@@ -769,7 +769,9 @@ void Viewer::selectAt(double x_px, double y_px) {
   const view::Camera& camera = cloud_->navigator->camera();
   ecs::Entity entity = polygonAt(scene_.registry(), camera, x_px, y_px);
   if (entity == ecs::kNullEntity) {
-    const std::optional<Snap> snap = snapCursor(scene_.registry(), camera, x_px, y_px, {});
+    SnapOptions walls_too;
+    walls_too.edge_on_planes = true;
+    const std::optional<Snap> snap = snapCursor(scene_.registry(), camera, x_px, y_px, {}, walls_too);
     if (snap && snap->kind == Snap::Kind::kPlane) entity = snap->source;
   }
   if (entity != ecs::kNullEntity) {
@@ -811,17 +813,23 @@ void Viewer::showElevationOfSelected() {
   cloud_->navigator->showElevation(segment->plane.centroid, segment->plane.normal, height_m);
 }
 
+// Whether the section, with `added` more planes (a slice's or a slab's two, a box's six, a clip
+// plane), stays within the planes the splat takes; else the palette says why not.
+bool Viewer::clipFits(std::size_t added, const char* what) {
+  const view::ClipRegion region = clip_.region();
+  if (region.planes.size() + (region.box ? 6 : 0) + added <= view::ClipRegion::kMaxPlanes) return true;
+  scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) {
+    t.drawing.message = std::string(what) + ": no more clip planes (at most " +
+                        std::to_string(view::ClipRegion::kMaxPlanes) +
+                        ", with a slice's and a slab's two and a box's six): remove some";
+  });
+  return false;
+}
+
 // A clip plane at the one selected segment's plane, keeping the side the view is on.
 void Viewer::clipAtSelectedPlane() {
   const Segment* segment = theSelectedSegment("clip plane");
-  if (!cloud_ || segment == nullptr) return;
-  const view::ClipRegion region = clip_.region();
-  if (region.planes.size() + (region.box ? 6 : 0) >= view::ClipRegion::kMaxPlanes) {
-    scene_.registry().patch<ToolState>(scene_.toolEntity(), [](ToolState& t) {
-      t.drawing.message = "clip plane: no more planes (at most 32, with a slice's two and a box's six)";
-    });
-    return;
-  }
+  if (!cloud_ || segment == nullptr || !clipFits(1, "clip plane")) return;
   const reco::Plane facing = segment->plane.orientedTowards(cloud_->navigator->camera().position);
   clip_.planes.push_back({facing.centroid, facing.normal.normalized()});
 }
@@ -916,11 +924,7 @@ void Viewer::setTool(Tool tool) {
   drawing_.reset();
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& state) {
     state.active = tool;
-    if (tool != Tool::kMeasure) {
-      state.measure_terms.clear();
-      state.measure_sources.clear();
-      state.measure_message.clear();
-    }
+    if (tool != Tool::kMeasure) forgetMeasureTerms(state);
     state.hover.reset();
   });
 }

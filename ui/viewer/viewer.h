@@ -134,6 +134,7 @@ class Viewer {
   void drawClipPlaneControls();
   void showElevationOfSelected();
   void clipAtSelectedPlane();
+  bool clipFits(std::size_t added, const char* what);
   // The one selected segment, else null with a message that `what` needs one.
   const Segment* theSelectedSegment(const std::string& what);
   void drawProjectPanel();

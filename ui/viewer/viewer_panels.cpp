@@ -463,7 +463,7 @@ void Viewer::drawSectionControls() {
   ImGui::Separator();
   const lod::Box3& bounds = cloud_->octree->header().bounds;
   bool slice = clip_.slice;
-  if (ImGui::Checkbox("Slice", &slice)) {
+  if (ImGui::Checkbox("Slice", &slice) && (!slice || clipFits(2, "slice"))) {
     // A new slice starts at the height the view looks at.
     if (slice) clip_.slice_bottom_z = cloud_->navigator->camera().target.z() - 0.5 * clip_.slice_thickness;
     clip_.slice = slice;
@@ -479,7 +479,7 @@ void Viewer::drawSectionControls() {
                       ImGuiSliderFlags_AlwaysClamp);
   }
   bool slab = clip_.slab.has_value();
-  if (ImGui::Checkbox("Slab", &slab)) {
+  if (ImGui::Checkbox("Slab", &slab) && (!slab || clip_.slab || clipFits(2, "slab"))) {
     clip_.slab.reset();
     if (slab) {
       if (const Segment* segment = theSelectedSegment("slab")) {
@@ -496,7 +496,7 @@ void Viewer::drawSectionControls() {
                       ImGuiSliderFlags_AlwaysClamp);
   }
   bool box = clip_.box.has_value();
-  if (ImGui::Checkbox("Clip box", &box)) {
+  if (ImGui::Checkbox("Clip box", &box) && (!box || clipFits(6, "clip box"))) {
     // A new box holds the whole cloud: shrink it from there.
     if (box) {
       view::ClipBox whole;

@@ -92,6 +92,17 @@ TEST_F(ClipBoxHandlesTest, HandlesAreFoundNearTheirMarkersOnly) {
   EXPECT_EQ(boxHandleAt(box_, camera_, centre.x(), centre.y()), BoxHandle::kCentre);
 }
 
+// Seen from straight above, the top face's handle runs along the view: a drag does not move it
+// (nearly parallel, each pixel would move it metres).
+TEST_F(ClipBoxHandlesTest, AHandleDraggedAlongTheViewStaysPut) {
+  camera_.position = {10.0, 5.0, 20.0};
+  camera_.up = Eigen::Vector3d::UnitY();
+  const view::ClipBox same =
+      BoxDrag(box_, BoxHandle::kZMax, rayAt(handle(BoxHandle::kZMax)), false).boxFor(rayAt({10.5, 5.5, 2.0}));
+  EXPECT_EQ(same.centre, box_.centre);
+  EXPECT_EQ(same.half_size, box_.half_size);
+}
+
 TEST_F(ClipBoxHandlesTest, TwelveEdgesBetweenEightCorners) {
   double length = 0.0;
   for (const auto& [a, b] : boxEdges(box_)) length += (b - a).norm();

@@ -102,6 +102,12 @@ TEST_F(MeasureToolTest, HeightsAboveOneFloorUntilEscape) {
   EXPECT_NEAR(valueOf(scene_.registry().get<Measurement>(taken[0])).value, 1.5, 1e-6);
   EXPECT_NEAR(valueOf(scene_.registry().get<Measurement>(taken[1])).value, 0.75, 1e-6);
   EXPECT_EQ(scene_.tool().measure_terms.size(), 1u) << "the floor stays for the next point";
+  // The floor deleted (an undo, a Delete): the next click starts over, with no floor.
+  scene_.select(room_.segments[2], false);
+  scene_.deleteSelected();
+  clickAt({0, 1.0, 1.0});  // wall x: not a floor
+  EXPECT_TRUE(scene_.tool().measure_terms.empty());
+  EXPECT_EQ(measurements().size(), 2u);
   tool_.escape();
   EXPECT_TRUE(scene_.tool().measure_terms.empty());
   EXPECT_EQ(MeasureTool::prompt(scene_.tool()), "Click the floor");
@@ -114,6 +120,9 @@ TEST_F(MeasureToolTest, BetweenPlanesRefusesPlanesFarFromParallel) {
   EXPECT_TRUE(measurements().empty());
   EXPECT_NE(message().find("not measured: the planes are 90.00"), std::string::npos) << message();
   EXPECT_EQ(scene_.tool().measure_terms.size(), 1u) << "the floor stays: another second plane may follow";
+  clickAt({0.3, 1.2, 0});  // the floor again
+  EXPECT_TRUE(measurements().empty());
+  EXPECT_EQ(message(), "the same plane twice: click another");
   clickAt({1.3, 1.3, 0.8});  // the table top
   ASSERT_EQ(measurements().size(), 1u) << message();
   EXPECT_NEAR(valueOf(last()).value, 0.8, 1e-9);

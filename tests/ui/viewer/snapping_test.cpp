@@ -82,13 +82,21 @@ TEST_F(SnappingTest, AWallSeenEdgeOnSnapsNearItsLine) {
   const Eigen::Vector2d at = pixelOf({0.0, 1.3, 2.0}) + Eigen::Vector2d(6, 0);
   SnapOptions planes_only;
   planes_only.corners = planes_only.edges = false;
+  planes_only.edge_on_planes = true;
   const std::optional<Snap> snap = snapCursor(registry_, camera_, at.x(), at.y(), no_points_, planes_only);
   ASSERT_TRUE(snap);
   EXPECT_EQ(snap->kind, Snap::Kind::kPlane);
   EXPECT_EQ(snap->source, segments_[0]);
   EXPECT_NEAR(snap->position.x(), 0.0, 1e-9) << "on the wall's plane";
   EXPECT_NEAR(snap->position.y(), 1.3, 1e-6);
+  EXPECT_NEAR(snap->position.z(), 2.0, 1e-9) << "on the wall's top edge, the nearer to the view, not its bottom";
   EXPECT_NEAR(snap->distance_px, 6.0, 1e-6);
+  // A point snap (a drawing tool, a distance) does not take the edge-on wall: its height there
+  // would be the outline's edge's. The floor under the cursor instead.
+  planes_only.edge_on_planes = false;
+  const std::optional<Snap> point = snapCursor(registry_, camera_, at.x(), at.y(), no_points_, planes_only);
+  ASSERT_TRUE(point);
+  EXPECT_EQ(point->source, segments_[2]);
   // Far from every wall's line: the floor, seen face on.
   const Eigen::Vector2d middle = pixelOf({1.0, 1.0, 0.0});
   const std::optional<Snap> floor = snapCursor(registry_, camera_, middle.x(), middle.y(), no_points_, planes_only);
