@@ -18,11 +18,13 @@
 #include <functional>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <unordered_map>
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/lod/framing.h"
 #include "engine/lod/node_indexer.h"
 #include "engine/lod/octree_format.h"
 
@@ -152,11 +154,25 @@ class Builder {
   BuildReport run() {
     raiseFileLimit();
     auto start = Clock::now();
-    scanBounds();
+    // Inputs whose headers state their bounds (LAS, LAZ) need no pass for them.
+    const std::optional<Box3> declared = declaredBounds();
+    if (declared) {
+      settleCube(*declared);
+    } else {
+      scanBounds();
+    }
     report_.seconds_bounds = secondsSince(start);
 
     start = Clock::now();
-    const std::vector<std::uint64_t> counts = countCells();
+    std::vector<std::uint64_t> counts = countCells();
+    if (declared && !declaredCubeHolds()) {
+      // The headers' bounds were wrong or loose: count again in the cube of the points' own
+      // bounds, which the count measured (the pass the headers saved, spent after all).
+      report_.header_bounds_wrong = true;
+      settleCube(header_.bounds);
+      counts = countCells();
+    }
+    report_.bounds_from_headers = declared.has_value();
     report_.seconds_counting = secondsSince(start);
 
     start = Clock::now();
@@ -182,9 +198,10 @@ class Builder {
   struct Batch {
     std::size_t source = 0;  // index of the input it came from
     io::PointBatch points;
-    std::vector<std::uint32_t> cells;  // counting-grid cell of each point
-    Box3 box{};                        // bounds of the batch
-    std::vector<BuildPoint> by_chunk;  // the points grouped by chunk (distribution)
+    std::vector<std::uint32_t> cells;          // counting-grid cell of each point
+    Box3 box{};                                // bounds of the batch
+    std::optional<AxisHistograms> histograms;  // of the batch's coordinates (counting)
+    std::vector<BuildPoint> by_chunk;          // the points grouped by chunk (distribution)
     std::vector<std::size_t> chunk_starts;
   };
 
@@ -248,6 +265,7 @@ class Builder {
   // What a reader reports once its input is read: skipped points, attributes, ignored fields,
   // scans. Collected in the bounds pass only, which reads every input first.
   void collectInputFacts(const BuildSource& source, const io::PointReader& reader) {
+    if (first_scan_.size() == options_.sources.size()) return;  // collected in an earlier pass
     header_.skipped_non_finite += reader.counts().non_finite;
     if (reader.info().attributes.colour) header_.attributes |= kHasColour;
     if (reader.info().attributes.intensity) header_.attributes |= kHasIntensity;
@@ -279,32 +297,62 @@ class Builder {
     header_.scan_count = static_cast<std::uint32_t>(header_.scans.size());
   }
 
+  static Box3 emptyBox() {
+    Box3 box;
+    box.min.fill(INFINITY);
+    box.max.fill(-INFINITY);
+    return box;
+  }
+  static void growBox(Box3& box, const Box3& other) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      box.min[a] = std::min(box.min[a], other.min[a]);
+      box.max[a] = std::max(box.max[a], other.max[a]);
+    }
+  }
+  static void measureBatch(Batch& batch) {
+    batch.box = emptyBox();
+    for (const io::PointRecord& p : batch.points.points) {
+      const double xyz[3] = {p.x, p.y, p.z};
+      for (std::size_t a = 0; a < 3; ++a) {
+        batch.box.min[a] = std::min(batch.box.min[a], xyz[a]);
+        batch.box.max[a] = std::max(batch.box.max[a], xyz[a]);
+      }
+    }
+  }
+
+  // The union of the bounds every input's header states, or nothing when one states none (or
+  // states none that is finite and ordered).
+  std::optional<Box3> declaredBounds() const {
+    Box3 box = emptyBox();
+    for (const BuildSource& source : options_.sources) {
+      const std::unique_ptr<io::PointReader> reader = source.open();
+      const std::optional<io::Bounds>& bounds = reader->info().declared_bounds;
+      if (!bounds) return std::nullopt;
+      for (std::size_t a = 0; a < 3; ++a) {
+        if (!std::isfinite(bounds->min[a]) || !std::isfinite(bounds->max[a]) || bounds->min[a] > bounds->max[a])
+          return std::nullopt;
+      }
+      growBox(box, {bounds->min, bounds->max});
+    }
+    return box;
+  }
+
   void scanBounds() {
-    Box3& b = header_.bounds;
-    b.min.fill(INFINITY);
-    b.max.fill(-INFINITY);
+    header_.bounds = emptyBox();
     std::uint64_t count = 0;
     pipelinedPass(
-        "reading bounds", 0,
-        [](Batch& batch) {
-          batch.box.min.fill(INFINITY);
-          batch.box.max.fill(-INFINITY);
-          for (const io::PointRecord& p : batch.points.points) {
-            const double xyz[3] = {p.x, p.y, p.z};
-            for (std::size_t a = 0; a < 3; ++a) {
-              batch.box.min[a] = std::min(batch.box.min[a], xyz[a]);
-              batch.box.max[a] = std::max(batch.box.max[a], xyz[a]);
-            }
-          }
-        },
+        "reading bounds", 0, [](Batch& batch) { measureBatch(batch); },
         [&](const Batch& batch) {
-          for (std::size_t a = 0; a < 3; ++a) {
-            b.min[a] = std::min(b.min[a], batch.box.min[a]);
-            b.max[a] = std::max(b.max[a], batch.box.max[a]);
-          }
+          growBox(header_.bounds, batch.box);
           count += batch.points.size();
         },
         [&](const BuildSource& source, const io::PointReader& reader) { collectInputFacts(source, reader); });
+    settleInputs(count);
+    settleCube(header_.bounds);
+  }
+
+  // Once the first pass has read every input: the point count, the input files, the scans.
+  void settleInputs(std::uint64_t count) {
     if (count == 0) {
       throw Error("the input holds no points" +
                   std::string(header_.skipped_non_finite > 0 ? " with a valid position" : ""));
@@ -312,29 +360,95 @@ class Builder {
     header_.point_count = count;
     header_.input_files = static_cast<std::uint32_t>(options_.sources.size());
     settleScans();
+  }
 
-    // A cube a hair larger than the bounds, so the farthest points stay inside.
+  // The cube around `bounds`: a hair larger than them, so the farthest points stay inside.
+  static Cube cubeAround(const Box3& bounds) {
     double extent = 0.0;
-    for (std::size_t a = 0; a < 3; ++a) extent = std::max(extent, b.max[a] - b.min[a]);
-    header_.cube.size = extent > 0.0 ? extent * (1.0 + 1e-6) + 1e-6 : 1.0;
-    for (std::size_t a = 0; a < 3; ++a) header_.cube.origin[a] = 0.5 * (b.min[a] + b.max[a]) - 0.5 * header_.cube.size;
+    for (std::size_t a = 0; a < 3; ++a) extent = std::max(extent, bounds.max[a] - bounds.min[a]);
+    Cube cube;
+    cube.size = extent > 0.0 ? extent * (1.0 + 1e-6) + 1e-6 : 1.0;
+    for (std::size_t a = 0; a < 3; ++a) cube.origin[a] = 0.5 * (bounds.min[a] + bounds.max[a]) - 0.5 * cube.size;
+    return cube;
+  }
+
+  void settleCube(const Box3& bounds) {
+    header_.cube = cubeAround(bounds);
     header_.root_spacing = header_.cube.size / kSamplingGrid;
     header_.sampling_grid = kSamplingGrid;
     header_.leaf_max_points = options_.leaf_max_points;
   }
 
+  // Whether the cube made from the headers' bounds serves the points the count measured: it holds
+  // them, and it is within 1 % of the cube their own bounds give (headers round their bounds; a
+  // loose header's larger cube would put the levels' spacings off the points').
+  bool declaredCubeHolds() const {
+    const Cube own = cubeAround(header_.bounds);
+    const double tolerance = 0.01 * own.size;
+    if (std::abs(own.size - header_.cube.size) > tolerance) return false;
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (std::abs(own.origin[a] - header_.cube.origin[a]) > tolerance) return false;
+      if (header_.bounds.min[a] < header_.cube.origin[a] ||
+          header_.bounds.max[a] > header_.cube.origin[a] + header_.cube.size)
+        return false;
+    }
+    return true;
+  }
+
+  // Counts the points per cell of the counting grid, and along each axis for the framing box.
+  // The first pass to read the inputs when their headers gave the bounds: then it also measures
+  // the points' bounds and count.
   std::vector<std::uint64_t> countCells() {
+    const bool first_read = first_scan_.size() < options_.sources.size();
     std::vector<std::uint64_t> counts(kCountCells, 0);
+    // Over the cube: the bounds are not known yet when the headers gave the cube.
+    const Box3 cube_box{header_.cube.origin,
+                        {header_.cube.origin[0] + header_.cube.size, header_.cube.origin[1] + header_.cube.size,
+                         header_.cube.origin[2] + header_.cube.size}};
+    AxisHistograms histograms(first_read ? cube_box : header_.bounds);
+    Box3 measured = emptyBox();
     std::uint64_t seen = 0;
     pipelinedPass(
-        "counting", header_.point_count, [&](Batch& batch) { locateCells(batch); },
+        "counting", first_read ? declaredPoints() : header_.point_count,
+        [&](Batch& batch) {
+          locateCells(batch);
+          if (!batch.histograms) batch.histograms.emplace(histograms.bounds());
+          batch.histograms->clear();
+          for (const io::PointRecord& p : batch.points.points) batch.histograms->add({p.x, p.y, p.z});
+          if (first_read) measureBatch(batch);
+        },
         [&](const Batch& batch) {
           for (std::uint32_t cell : batch.cells) ++counts[cell];
+          histograms.merge(*batch.histograms);
+          if (first_read) growBox(measured, batch.box);
           seen += batch.cells.size();
-        });
+        },
+        [&](const BuildSource& source, const io::PointReader& reader) { collectInputFacts(source, reader); });
+    if (first_read) {
+      settleInputs(seen);
+      header_.bounds = measured;
+    }
     // The inputs changed between passes, or a reader is not deterministic.
     if (seen != header_.point_count) throw Error("an input changed while it was being read; run the import again");
+    // Inside the bounds, also where the histograms spanned the cube.
+    Box3 framing = histograms.framingBox();
+    for (std::size_t a = 0; a < 3; ++a) {
+      framing.min[a] = std::clamp(framing.min[a], header_.bounds.min[a], header_.bounds.max[a]);
+      framing.max[a] = std::clamp(framing.max[a], framing.min[a], header_.bounds.max[a]);
+    }
+    header_.framing = framing;
     return counts;
+  }
+
+  // The points the headers state, for the progress line (0 when one does not say).
+  std::uint64_t declaredPoints() const {
+    std::uint64_t total = 0;
+    for (const BuildSource& source : options_.sources) {
+      const std::optional<std::uint64_t> points = source.open()->info().declared_points;
+      if (!points) return 0;
+      total += *points;
+    }
+    return total;
   }
 
   // The largest chunk that threads can index side by side within the budget.

@@ -2,8 +2,11 @@
 // Builds a Plumb octree from point clouds of any size with bounded memory (out of core), in
 // parallel on oneTBB. docs/octree-format.md describes the result.
 //
-//   1. bounds:     read every input once for the bounding cube and the point count;
-//   2. counting:   read again, counting points per cell of a 128^3 grid;
+//   1. bounds:     read every input once for the bounding cube and the point count; skipped
+//                  where every input's header states its bounds (LAS, LAZ): then the next pass
+//                  measures them, and counts again if the points do not fit the headers' cube;
+//   2. counting:   read again, counting points per cell of a 128^3 grid and along each axis
+//                  (the framing box, framing.h);
 //   3. chunking:   split the cube into chunks (octree cells) small enough to index in memory;
 //   4. distribute: read a third time, appending each point to its chunk's temporary file;
 //   5. index:      build each chunk's subtree in parallel (NodeIndexer), writing nodes as they
@@ -58,6 +61,11 @@ struct BuildReport {
   std::uint64_t file_bytes = 0;
   std::vector<std::string> ignored_fields;  // "<input>: <field>"
   std::vector<std::string> scans;           // the scans each point keeps the index of; empty: one scan
+  // Every input's header stated its bounds (LAS, LAZ), so no pass read them: the count measured
+  // the points' own. `header_bounds_wrong`: the points did not fit the headers' bounds, or
+  // these were loose, and the count was done again in the points' own cube.
+  bool bounds_from_headers = false;
+  bool header_bounds_wrong = false;
   double seconds_bounds = 0, seconds_counting = 0, seconds_distributing = 0, seconds_indexing = 0;
 };
 

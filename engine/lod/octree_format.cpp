@@ -42,6 +42,7 @@ class Reader {
 };
 
 constexpr std::size_t kHeaderCrcOffset = kHeaderBytes - 4;
+constexpr std::uint64_t kFramingOffset = 192;  // version 3: the framing box, 6 x f64
 
 }  // namespace
 
@@ -82,6 +83,9 @@ std::array<std::byte, kHeaderBytes> encodeHeader(const OctreeHeader& h) {
   w.put(h.scan_table_bytes);
   w.put(h.scan_table_crc);
   w.put(h.scan_count);
+  const Box3 framing = h.framing.value_or(h.bounds);
+  for (double v : framing.min) w.put(v);
+  for (double v : framing.max) w.put(v);
   const std::uint32_t crc = crc32Of(std::span(bytes).first(kHeaderCrcOffset));
   std::memcpy(bytes.data() + kHeaderCrcOffset, &crc, 4);
   return bytes;
@@ -133,6 +137,19 @@ OctreeHeader decodeHeader(std::span<const std::byte, kHeaderBytes> bytes, const 
   const bool scan_index = (h.attributes & kHasScanIndex) != 0;
   if (scan_index != (h.scan_count > 0) || (version < 2 && scan_index)) {
     throw fileErrorAt(path, 80, "corrupt header: the scan index flag and the scan count disagree");
+  }
+  if (version >= 3) {
+    Box3 framing{};
+    for (double& v : framing.min) v = r.get<double>();
+    for (double& v : framing.max) v = r.get<double>();
+    for (std::size_t a = 0; a < 3; ++a) {
+      // Also false for NaN.
+      if (!(h.bounds.min[a] <= framing.min[a] && framing.min[a] <= framing.max[a] &&
+            framing.max[a] <= h.bounds.max[a])) {
+        throw fileErrorAt(path, kFramingOffset, "corrupt header: the framing box does not lie inside the bounds");
+      }
+    }
+    h.framing = framing;
   }
   return h;
 }

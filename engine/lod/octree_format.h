@@ -1,5 +1,5 @@
 #pragma once
-// The on-disk layout of a Plumb octree (.plumb), version 2. docs/octree-format.md is the
+// The on-disk layout of a Plumb octree (.plumb), version 3. docs/octree-format.md is the
 // reference; this header is its single implementation. All integers and floats little-endian.
 //
 //   [header: 256 bytes] [node blocks ...] [node index: node_count * 40 bytes] [scan table]
@@ -7,11 +7,12 @@
 // Every node block, the index, the scan table and the header carry a CRC-32 (zlib's
 // polynomial), so that any corruption is reported as such instead of producing wrong points.
 // Version 1 files (no scans) are read as they are: their layout is version 2's without the
-// scan index.
+// scan index; version 2's is version 3's without the framing box.
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@
 namespace plumb::lod {
 
 constexpr std::array<char, 8> kOctreeMagic{'P', 'L', 'U', 'M', 'B', 'O', 'C', 'T'};
-constexpr std::uint32_t kOctreeVersion = 2;
+constexpr std::uint32_t kOctreeVersion = 3;
 constexpr std::uint32_t kOldestOctreeVersion = 1;
 constexpr std::size_t kHeaderBytes = 256;
 constexpr std::size_t kIndexEntryBytes = 40;
@@ -66,6 +67,9 @@ struct OctreeHeader {
   // The scans the cloud merges, in index order: "<file>" for a single-scan file, "<file>:
   // <name>" for a scan of an E57 file. Empty when the cloud has no scan index.
   std::vector<std::string> scans;
+  // Version 3: the box that frames the cloud's bulk, inside `bounds` (framing.h; measured on
+  // every point by the import). Absent in older files and COPC files: framingBox() samples them.
+  std::optional<Box3> framing;
 };
 
 struct NodeInfo {

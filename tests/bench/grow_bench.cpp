@@ -53,13 +53,13 @@ std::string buildScene(const std::filesystem::path& directory, const char* scene
   request.scanner = scanner;
   request.target_points = points;
   request.offset = offset;
-  request.ply_path = (directory / (std::string(scene) + ".ply")).string();
+  request.points_path = (directory / (std::string(scene) + ".ply")).string();
   reco::sim::simulate(request);
   lod::BuildOptions build;
-  build.sources = lod::fileSources({request.ply_path});
+  build.sources = lod::fileSources({request.points_path});
   build.output = (directory / (std::string(scene) + ".plumb")).string();
   report = lod::buildOctree(build);
-  std::filesystem::remove(request.ply_path);
+  std::filesystem::remove(request.points_path);
   return build.output;
 }
 

@@ -45,7 +45,7 @@ void simulateBenchmark(benchmark::State& state, const std::string& scene_name, s
   request.scene = scene_name;
   request.target_points = target;
   request.offset = Eigen::Vector3d(512000, 5403000, 250);
-  request.ply_path = path.string();
+  request.points_path = path.string();
   std::uint64_t points = 0;
   for (auto _ : state) points += sim::simulate(request).counts.returns;
   state.SetItemsProcessed(static_cast<std::int64_t>(points));

@@ -46,10 +46,10 @@ inline GrownWalls grownWalls(const char* scene, std::uint64_t points, const std:
   request.scanner.seed = 1;
   request.target_points = points;
   request.offset = kOffset;
-  request.ply_path = directory.file("scan.ply");
+  request.points_path = directory.file("scan.ply");
   reco::sim::simulate(request);
   lod::BuildOptions build;
-  build.sources = lod::fileSources({request.ply_path});
+  build.sources = lod::fileSources({request.points_path});
   build.output = directory.file("scan.plumb");
   lod::buildOctree(build);
   lod::NodeCache cache(lod::Octree::open(build.output), 256 << 20);

@@ -461,7 +461,7 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
   request.target_points = settings.points;
   request.station_count = settings.stations;
   request.offset = kOffset;
-  request.ply_path = (temporary.path / "room.ply").string();
+  request.points_path = (temporary.path / "room.ply").string();
   request.truth_path = (temporary.path / "room.json").string();
   reco::sim::simulate(request);
 
@@ -470,15 +470,15 @@ std::vector<Trial> runRepetition(const Settings& settings, double noise_mm, std:
   std::function<void(const Eigen::Vector3d&, std::uint32_t)> label;
   if (settings.print_segments) label = [&](const Eigen::Vector3d& p, std::uint32_t id) { labels.add(p, id); };
   const std::vector<reco::PlaneRegression> regressions =
-      test::fitTruePlanes(request.ply_path, truth.planes.size(), kOffset, label);
+      test::fitTruePlanes(request.points_path, truth.planes.size(), kOffset, label);
 
   lod::BuildOptions build;
-  build.sources = lod::fileSources({request.ply_path});
+  build.sources = lod::fileSources({request.points_path});
   build.output = (temporary.path / "room.plumb").string();
   build.memory_mb = 256;
   build.threads = 1;  // the repetitions run side by side already
   lod::buildOctree(build);
-  fs::remove(request.ply_path);  // keeps the disk use of a job at one octree
+  fs::remove(request.points_path);  // keeps the disk use of a job at one octree
   const auto octree = lod::Octree::open(build.output);
   lod::NodeCache cache(octree, kCacheBytes);
 

@@ -28,6 +28,9 @@ class GeneratedReader final : public io::PointReader {
     info_.scans = std::move(scans);
   }
 
+  // As a LAS header states them.
+  void declareBounds(const io::Bounds& bounds) { info_.declared_bounds = bounds; }
+
   bool read(io::PointBatch& batch, std::size_t max_points) override {
     batch.clear();
     while (batch.size() < max_points && next_ < count_) deliver(batch, generator_(next_++));

@@ -151,7 +151,7 @@ nlohmann::json readTruth(const std::string& path) {
 
 }  // namespace
 
-SimulatedTruth::SimulatedTruth(const std::string& ply_path, const std::string& truth_path)
+SimulatedTruth::SimulatedTruth(const std::string& points_path, const std::string& truth_path)
     : truth_path_(truth_path) {
   const nlohmann::json truth = readTruth(truth_path);
   try {
@@ -170,7 +170,7 @@ SimulatedTruth::SimulatedTruth(const std::string& ply_path, const std::string& t
     throw fileError(truth_path, std::string("not the simulator's truth: ") + error.what());
   }
   const nlohmann::json& offset = truth.at("offset");
-  fits_ = fitTruePlanes(ply_path, planes_.size(), vector3(offset));
+  fits_ = fitTruePlanes(points_path, planes_.size(), vector3(offset));
 }
 
 CornerLimit SimulatedTruth::cornerLimit(const Eigen::Vector3d& position) const {

@@ -63,7 +63,7 @@ struct PlaneLimit {
 // all its points, once: the limits of its corners and planes.
 class SimulatedTruth {
  public:
-  SimulatedTruth(const std::string& ply_path, const std::string& truth_path);
+  SimulatedTruth(const std::string& points_path, const std::string& truth_path);
 
   // The truth's corner at `position` (within 1 mm); throws when it lists none there.
   CornerLimit cornerLimit(const Eigen::Vector3d& position) const;

@@ -322,6 +322,91 @@ TEST_F(Cli, RenderWritesTheViewAsAPng) {
   EXPECT_EQ(view.height, 120);
 }
 
+// 1234567 as "1,234,567", as plumb prints counts.
+std::string withCommas(std::uint64_t value) {
+  std::string digits = std::to_string(value);
+  for (int at = static_cast<int>(digits.size()) - 3; at > 0; at -= 3) digits.insert(static_cast<std::size_t>(at), ",");
+  return digits;
+}
+
+// The non-background pixels' box of an image: its width and height in pixels.
+std::array<int, 2> litExtent(const plumb::io::RgbaImage& image) {
+  int x0 = image.width, x1 = -1, y0 = image.height, y1 = -1;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (image.pixel(x, y) == image.pixel(0, 0)) continue;
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    }
+  }
+  return {x1 - x0 + 1, y1 - y0 + 1};
+}
+
+// Stray points do not shrink the picture: the standard views frame the cloud's bulk (the
+// octree's framing box), so two returns 17 m above the 2.5 m room leave it as large as without
+// them. A LAS input's header gives the bounds, which saves the import a pass.
+TEST_F(Cli, StandardViewsFrameTheCloudWithoutItsStrayPoints) {
+  ASSERT_EQ(plumb("simulate --points 100000 --noise-mm 2 --offset 512000,5403000,250 -o " + path("room.las")).exit_code,
+            0);
+  plumb::test::writeFile(path("strays.xyz"), "512003.5 5403002.5 269.5\n512003.6 5403002.5 269.6\n");
+  const Outcome clean = plumb("import " + path("room.las") + " -o " + path("clean.plumb"));
+  ASSERT_EQ(clean.exit_code, 0) << clean.err;
+  EXPECT_NE(clean.out.find("bounds from the headers,"), std::string::npos) << clean.out;
+  const Outcome strays = plumb("import " + path("room.las") + " " + path("strays.xyz") + " -o " + path("strays.plumb"));
+  ASSERT_EQ(strays.exit_code, 0) << strays.err;
+  EXPECT_NE(strays.out.find("(bounds 0."), std::string::npos) << "a text file states no bounds: " << strays.out;
+
+  const Outcome info = plumb("info " + path("strays.plumb"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  // The bounds keep the strays; the framing box, printed after them, leaves them out.
+  const std::size_t framing = info.out.find("  framing");
+  ASSERT_NE(framing, std::string::npos) << info.out;
+  EXPECT_NE(info.out.rfind(".. 269.600\n", framing), std::string::npos) << info.out;
+  EXPECT_EQ(info.out.find("269.6", framing), std::string::npos) << info.out;
+
+  for (const std::string view : {"iso", "front", "side"}) {
+    for (const std::string cloud : {"clean", "strays"}) {
+      const Outcome run = plumb("render " + path(cloud + ".plumb") + " --view " + view +
+                                " --size 320x200 --edl off -o " + path(cloud + "-" + view + ".png"));
+      ASSERT_EQ(run.exit_code, 0) << run.err;
+    }
+    const std::array<int, 2> without = litExtent(plumb::io::readPng(path("clean-" + view + ".png")));
+    const std::array<int, 2> with = litExtent(plumb::io::readPng(path("strays-" + view + ".png")));
+    // Framed on the bounds, the room would be about a tenth as high (2.5 of 19.6 m).
+    EXPECT_GT(without[1], 100) << view;
+    EXPECT_NEAR(with[0], without[0], 0.05 * without[0]) << view;
+    EXPECT_NEAR(with[1], without[1], 0.05 * without[1]) << view;
+  }
+}
+
+// `plumb simulate -o X.plumb` builds the octree of the scan without a point file: the same cloud
+// as the scan written to PLY and imported, and the truth beside it.
+TEST_F(Cli, SimulateBuildsAnOctreeWithoutAPointFile) {
+  const std::string scan = "simulate --points 150000 --seed 3 --offset 512000,5403000,250 ";
+  const Outcome direct =
+      plumb(scan + "-o " + path("room.plumb") + " --truth " + path("room.json") + " --memory-mb 128");
+  ASSERT_EQ(direct.exit_code, 0) << direct.err;
+  EXPECT_NE(direct.out.find("(octree"), std::string::npos) << direct.out;
+  ASSERT_EQ(plumb(scan + "-o " + path("room.ply")).exit_code, 0);
+  ASSERT_EQ(plumb("import " + path("room.ply") + " -o " + path("imported.plumb")).exit_code, 0);
+  EXPECT_EQ(entries(), 4u) << "room.plumb, room.json, room.ply, imported.plumb: nothing else";
+
+  const nlohmann::json truth = nlohmann::json::parse(plumb::test::readFile(path("room.json")));
+  const Outcome built = plumb("info " + path("room.plumb"));
+  const Outcome imported = plumb("info " + path("imported.plumb"));
+  ASSERT_EQ(built.exit_code, 0) << built.err;
+  const auto from = [](const std::string& text, const std::string& start, const std::string& end) {
+    const std::size_t at = text.find(start);
+    return at == std::string::npos ? std::string() : text.substr(at, text.find(end, at) - at);
+  };
+  const std::string points = from(built.out, "  points", "\n");
+  EXPECT_EQ(points, "  points      " + withCommas(truth["points"]["written"].get<std::uint64_t>())) << built.out;
+  EXPECT_EQ(from(built.out, "  bounds", "  cube"), from(imported.out, "  bounds", "  cube"));
+  EXPECT_EQ(from(built.out, "  nodes", "\n"), from(imported.out, "  nodes", "\n"));
+}
+
 // A COPC file needs no import: info, grow and render open it in place, and leave no file behind.
 TEST_F(Cli, CopcFilesOpenInPlace) {
   PLUMB_REQUIRE_FORMAT_FILE(copc, "copc/lone-star.copc.laz");

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "engine/lod/framing.h"
 #include "engine/lod/octree.h"
 #include "ui/cli/arguments.h"
 #include "ui/cli/command.h"
@@ -34,6 +35,12 @@ Command addInfoCommand(CLI::App& plumb) {
     std::printf("\n  inputs      %u file%s\n", h.input_files, h.input_files == 1 ? "" : "s");
     std::printf("  bounds      x %.3f .. %.3f\n              y %.3f .. %.3f\n              z %.3f .. %.3f\n",
                 h.bounds.min[0], h.bounds.max[0], h.bounds.min[1], h.bounds.max[1], h.bounds.min[2], h.bounds.max[2]);
+    const lod::Box3 framing = lod::framingBox(*octree);
+    std::printf(
+        "  framing     x %.3f .. %.3f\n              y %.3f .. %.3f\n              z %.3f .. %.3f\n"
+        "              (%.1f %% of the points along each axis%s)\n",
+        framing.min[0], framing.max[0], framing.min[1], framing.max[1], framing.min[2], framing.max[2],
+        100.0 * (1.0 - 2.0 * lod::kFramingQuantile), h.framing ? "" : ", from the shallowest levels");
     std::printf("  cube        origin %.3f %.3f %.3f, size %.3f m\n", h.cube.origin[0], h.cube.origin[1],
                 h.cube.origin[2], h.cube.size);
     std::string attributes;

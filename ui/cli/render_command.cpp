@@ -12,6 +12,7 @@
 #include "engine/gpu/instance.h"
 #include "engine/gpu/memory.h"
 #include "engine/io/png_image.h"
+#include "engine/lod/framing.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/render/point_renderer.h"
@@ -107,9 +108,11 @@ Command addRenderCommand(CLI::App& plumb) {
     const CloudInput cloud(options->cloud, "render");
     const lod::OctreeHeader& header = cloud.octree()->header();
     if (options->camera.empty()) {
-      const lod::Box3& bounds = header.bounds;
-      camera = view::presetCamera(*view::viewPresetNamed(options->view), {bounds.min[0], bounds.min[1], bounds.min[2]},
-                                  {bounds.max[0], bounds.max[1], bounds.max[2]}, size[0], size[1]);
+      // The cloud's bulk, not its stray points (framing.h).
+      const lod::Box3 framing = lod::framingBox(*cloud.octree());
+      camera =
+          view::presetCamera(*view::viewPresetNamed(options->view), {framing.min[0], framing.min[1], framing.min[2]},
+                             {framing.max[0], framing.max[1], framing.max[2]}, size[0], size[1]);
     }
     camera.viewport_width_px = size[0];
     camera.viewport_height_px = size[1];

@@ -56,7 +56,7 @@ DemoScan ensureDemoScan(const std::function<void(std::string_view, double)>& pro
   request.scanner.seed = 1;
   request.target_points = kDemoPoints;
   request.offset = kOffset;
-  request.ply_path = ply.string();
+  request.points_path = ply.string();
   request.truth_path = demo.truth.string();
   try {
     reco::sim::simulate(request, [&](double fraction) {

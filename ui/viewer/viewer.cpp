@@ -15,6 +15,7 @@
 #include "engine/core/error.h"
 #include "engine/io/png_image.h"
 #include "engine/io/sampled_reader.h"
+#include "engine/lod/framing.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "engine/lod/octree_builder.h"
@@ -369,15 +370,16 @@ void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string te
   render::RendererOptions renderer_options;
   renderer_options.gpu_timing = options_.profile;
   cloud->renderer = std::make_unique<render::PointRenderer>(device_, allocator_, *cloud->cache, renderer_options);
-  const lod::Box3& bounds = cloud->octree->header().bounds;
+  cloud->framing = lod::framingBox(*cloud->octree);
+  const lod::Box3& framing = cloud->framing;
   const VkExtent2D size = window_.framebufferSize();
   const int width =
       std::max(1, static_cast<int>(std::lround(std::max(1u, size.width) * static_cast<double>(render_scale_))));
   const int height =
       std::max(1, static_cast<int>(std::lround(std::max(1u, size.height) * static_cast<double>(render_scale_))));
   cloud->navigator =
-      std::make_unique<Navigator>(Eigen::Vector3d(bounds.min[0], bounds.min[1], bounds.min[2]),
-                                  Eigen::Vector3d(bounds.max[0], bounds.max[1], bounds.max[2]), width, height);
+      std::make_unique<Navigator>(Eigen::Vector3d(framing.min[0], framing.min[1], framing.min[2]),
+                                  Eigen::Vector3d(framing.max[0], framing.max[1], framing.max[2]), width, height);
   cloud->navigator->setViewport(width, height, static_cast<int>(std::max(1u, size.width)));
   if (home) cloud->navigator->setHome(*home);
   if (current) cloud->navigator->setCamera(*current);

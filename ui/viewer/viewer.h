@@ -17,6 +17,7 @@
 #include "engine/gpu/swapchain.h"
 #include "engine/gpu/timeline.h"
 #include "engine/jobs/job_system.h"
+#include "engine/lod/cube.h"
 #include "engine/render/point_renderer.h"
 #include "reco/parameters.h"
 #include "ui/viewer/clip_box_handles.h"
@@ -44,6 +45,7 @@ namespace plumb::viewer {
 struct LoadedCloud {
   std::shared_ptr<const lod::Octree> octree;
   std::string temporary;  // an imported octree's file, removed with the cloud
+  lod::Box3 framing{};    // the cloud's bulk, without its stray points (lod/framing.h): what views frame
   std::unique_ptr<lod::NodeCache> cache;
   std::unique_ptr<render::PointRenderer> renderer;
   std::unique_ptr<Navigator> navigator;

@@ -497,12 +497,13 @@ void Viewer::drawSectionControls() {
   }
   bool box = clip_.box.has_value();
   if (ImGui::Checkbox("Clip box", &box) && (!box || clipFits(6, "clip box"))) {
-    // A new box holds the whole cloud: shrink it from there.
+    // A new box holds the cloud's bulk (its framing box, without stray points): shrink it from there.
     if (box) {
+      const lod::Box3& framing = cloud_->framing;
       view::ClipBox whole;
       for (std::size_t a = 0; a < 3; ++a) {
-        whole.centre[static_cast<Eigen::Index>(a)] = 0.5 * (bounds.min[a] + bounds.max[a]);
-        whole.half_size[static_cast<Eigen::Index>(a)] = std::max(0.5 * (bounds.max[a] - bounds.min[a]), 0.05);
+        whole.centre[static_cast<Eigen::Index>(a)] = 0.5 * (framing.min[a] + framing.max[a]);
+        whole.half_size[static_cast<Eigen::Index>(a)] = std::max(0.5 * (framing.max[a] - framing.min[a]), 0.05);
       }
       clip_.box = whole;
     } else {

@@ -68,8 +68,8 @@ TEST(PcdData, RoomScan1MatchesItsPly) {
   EXPECT_FALSE(cloud.info.attributes.colour);
   EXPECT_TRUE(cloud.info.ignored_fields.empty());
 
-  PLUMB_REQUIRE_SHARED_DATA(ply_path, "pcl_room_scan1.ply");
-  auto ply = readPlyFloats(ply_path);
+  PLUMB_REQUIRE_SHARED_DATA(points_path, "pcl_room_scan1.ply");
+  auto ply = readPlyFloats(points_path);
   std::vector<std::array<float, 3>> pcd;
   for (const auto& p : cloud.points) {
     pcd.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});

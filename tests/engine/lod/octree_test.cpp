@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <span>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -206,7 +209,7 @@ TEST(Octree, EachPointKeepsTheIndexOfItsScan) {
   EXPECT_EQ(h.attributes & kHasScanIndex, kHasScanIndex);
   EXPECT_EQ(h.scans, (std::vector<std::string>{"site.e57: north", "site.e57: south", "extra.ply"}));
   EXPECT_EQ(built.report.scans, h.scans);
-  EXPECT_EQ(built.octree->format(), "Plumb octree 2");
+  EXPECT_EQ(built.octree->format(), "Plumb octree 3");
   std::array<std::uint64_t, 3> per_scan{};
   for (const NodeInfo& node : built.octree->nodes()) {
     const NodePoints loaded = built.octree->load(node);
@@ -246,6 +249,59 @@ TEST(Octree, AVersionOneFileStillOpens) {
   const auto old = Octree::open(path);
   EXPECT_EQ(old->format(), "Plumb octree 1");
   expectEveryPointKeptToTheMillimetre(*old, 20'000);
+}
+
+// The nodes of an octree with each node's point ids, to compare two builds.
+std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>, std::vector<std::uint64_t>>
+nodeContents(const Octree& octree) {
+  std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>, std::vector<std::uint64_t>> nodes;
+  for (const NodeInfo& node : octree.nodes()) {
+    const NodePoints loaded = octree.load(node);
+    auto& ids = nodes[{node.key.level, node.key.x, node.key.y, node.key.z}];
+    for (const PackedPoint& p : loaded.points) ids.push_back(test::idOf(p.rgb, p.intensity));
+    std::sort(ids.begin(), ids.end());
+  }
+  return nodes;
+}
+
+// The room's points from a reader whose header states `bounds`, as a LAS file's does.
+BuildSource roomWithDeclaredBounds(std::uint64_t count, const io::Bounds& bounds) {
+  return {"declared.las", [count, bounds] {
+            auto reader = std::make_unique<test::GeneratedReader>(count, roomPoint);
+            reader->declareBounds(bounds);
+            return reader;
+          }};
+}
+
+// Inputs whose headers state their bounds are read twice instead of three times, into the same
+// octree; bounds the points do not fit, or loose ones, cost the pass back and change nothing.
+TEST(Octree, BoundsFromTheHeadersSaveAPassAndChangeNothing) {
+  constexpr std::uint64_t count = 30'000;
+  test::TempDirectory dir;
+  const Built read = build(dir, {test::generatedSource(count, roomPoint)});
+  EXPECT_FALSE(read.report.bounds_from_headers);
+  const Box3 bounds = read.octree->header().bounds;
+  const auto reference = nodeContents(*read.octree);
+
+  struct Case {
+    const char* what;
+    io::Bounds declared;
+    bool wrong;
+  };
+  io::Bounds tight{bounds.min, bounds.max}, inside = tight, loose = tight;
+  inside.max[2] -= 1.0;  // the wall's top lies above it
+  for (std::size_t a = 0; a < 3; ++a) loose.max[a] += 100.0;
+  for (const Case& c : {Case{"exact", tight, false}, Case{"too small", inside, true}, Case{"loose", loose, true}}) {
+    const Built declared = build(dir, {roomWithDeclaredBounds(count, c.declared)});
+    EXPECT_TRUE(declared.report.bounds_from_headers) << c.what;
+    EXPECT_EQ(declared.report.header_bounds_wrong, c.wrong) << c.what;
+    const OctreeHeader& header = declared.octree->header();
+    EXPECT_EQ(header.point_count, count) << c.what;
+    EXPECT_EQ(header.bounds.min, bounds.min) << c.what;
+    EXPECT_EQ(header.bounds.max, bounds.max) << c.what;
+    EXPECT_NEAR(header.cube.size, read.octree->header().cube.size, 1e-6 * header.cube.size) << c.what;
+    EXPECT_TRUE(nodeContents(*declared.octree) == reference) << c.what << ": other nodes or points";
+  }
 }
 
 TEST(Octree, ASinglePointAndDuplicatesBuild) {
