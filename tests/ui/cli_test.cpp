@@ -324,9 +324,13 @@ TEST_F(Cli, RenderWritesTheViewAsAPng) {
 
 // 1234567 as "1,234,567", as plumb prints counts.
 std::string withCommas(std::uint64_t value) {
-  std::string digits = std::to_string(value);
-  for (int at = static_cast<int>(digits.size()) - 3; at > 0; at -= 3) digits.insert(static_cast<std::size_t>(at), ",");
-  return digits;
+  const std::string digits = std::to_string(value);
+  std::string text;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) text += ',';
+    text += digits[i];
+  }
+  return text;
 }
 
 // The non-background pixels' box of an image: its width and height in pixels.
