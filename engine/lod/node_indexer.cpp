@@ -25,7 +25,6 @@ namespace plumb::lod {
 namespace {
 
 constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
-constexpr std::size_t kGridCells = std::size_t{kSamplingGrid} * kSamplingGrid * kSamplingGrid;
 constexpr std::uint32_t kReach = 1;   // a grid cell's neighbourhood: the cells within this many steps
 std::uint64_t mix(std::uint64_t h) {  // the splitmix64 finaliser
   h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
@@ -61,40 +60,69 @@ bool NodeIndexer::isLeaf(const CellKey& key, std::size_t count) const {
   return count <= leaf_max_points_ || key.level >= kMaxLevel || cube_.cellSize(key.level) < kMinCellSize;
 }
 
+namespace {
+
+// Sorts `keys` (a grid cell in the high 32 bits, an index in the low) by cell, stably: a
+// least-significant-digit radix sort in two passes of 11 bits over the 21 bits of a 128^3 cell,
+// whose reads and writes run in sequence where a table of 2^21 cells would be read at random.
+void sortByCell(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& scratch) {
+  constexpr int kBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  static_assert(2 * kBits >= 21, "two passes cover a 128^3 cell index");
+  scratch.resize(keys.size());
+  for (int shift = 32; shift < 32 + 2 * kBits; shift += kBits) {
+    std::array<std::uint32_t, kBuckets + 1> starts{};
+    for (const std::uint64_t key : keys) ++starts[((key >> shift) & (kBuckets - 1)) + 1];
+    for (std::size_t b = 0; b < kBuckets; ++b) starts[b + 1] += starts[b];
+    for (const std::uint64_t key : keys) scratch[starts[(key >> shift) & (kBuckets - 1)]++] = key;
+    keys.swap(scratch);
+  }
+}
+
+}  // namespace
+
 std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoint> points,
                                          std::span<const Position> coarser) {
-  if (slot_of_cell_.empty()) slot_of_cell_.assign(kGridCells, kEmpty);
   const Box3 box = cube_.cellBox(key);
   const double inverse_step = kSamplingGrid / cube_.cellSize(key.level);
   auto locate = [&](const Position& p) {
-    std::uint32_t cell = 0;
+    std::uint64_t cell = 0;
     for (std::size_t a = 0; a < 3; ++a) {
       const double local = (p[a] - box.min[a]) * inverse_step;
       const double index = std::clamp(std::floor(local), 0.0, double{kSamplingGrid - 1});
-      cell = cell * kSamplingGrid + static_cast<std::uint32_t>(index);
+      cell = cell * kSamplingGrid + static_cast<std::uint64_t>(index);
     }
     return cell;
   };
-  auto slotOf = [&](std::uint32_t cell) {
-    std::uint32_t& slot = slot_of_cell_[cell];
-    if (slot == kEmpty) {
-      slot = static_cast<std::uint32_t>(slots_.size());
-      slots_.push_back({cell});
-    }
-    return slot;
-  };
 
-  // 1. Count, per occupied grid cell, the coarser points and this node's points.
-  slots_.clear();
-  for (const Position& p : coarser) ++slots_[slotOf(locate(p))].coarser;
-  slot_of_point_.resize(points.size());
+  // 1. The occupied grid cells (slots), in cell order, with their coarser points and this node's
+  //    own: both sorted by cell, then merged. order_ lists the node's points cell by cell.
+  cell_keys_.resize(points.size());
   score_.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Position p{points[i].x, points[i].y, points[i].z};
-    const std::uint32_t slot = slotOf(locate(p));
-    ++slots_[slot].own;
-    slot_of_point_[i] = slot;
+    cell_keys_[i] = locate(p) << 32 | i;
     score_[i] = positionHash(p);
+  }
+  sortByCell(cell_keys_, sort_scratch_);
+  coarser_keys_.resize(coarser.size());
+  for (std::size_t i = 0; i < coarser.size(); ++i) coarser_keys_[i] = locate(coarser[i]) << 32;
+  sortByCell(coarser_keys_, sort_scratch_);
+  slots_.clear();
+  order_.resize(points.size());
+  std::size_t own_at = 0, coarser_at = 0;
+  while (own_at < cell_keys_.size() || coarser_at < coarser_keys_.size()) {
+    const std::uint64_t own_cell = own_at < cell_keys_.size() ? cell_keys_[own_at] >> 32 : kEmpty;
+    const std::uint64_t coarser_cell = coarser_at < coarser_keys_.size() ? coarser_keys_[coarser_at] >> 32 : kEmpty;
+    Slot slot{static_cast<std::uint32_t>(std::min(own_cell, coarser_cell))};
+    slot.first = static_cast<std::uint32_t>(own_at);
+    for (; coarser_at < coarser_keys_.size() && coarser_keys_[coarser_at] >> 32 == slot.cell; ++coarser_at)
+      ++slot.coarser;
+    for (; own_at < cell_keys_.size() && cell_keys_[own_at] >> 32 == slot.cell; ++own_at) {
+      order_[own_at] = static_cast<std::uint32_t>(cell_keys_[own_at]);
+      ++slot.own;
+    }
+    slots_.push_back(slot);
   }
 
   // 2. Each cell's quota: its share of what its 3^3 neighbourhood still needs to reach about one
@@ -103,18 +131,25 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
   //    neighbourhood's mean: the few points of a noise tail that reach into the next layer of
   //    cells occupy it only a little, so a level's density on a wall does not grow with the
   //    number of points scanned (ten times the points fill ten times the tail cells).
+  //    The neighbours lie in 9 rows of z (x and y one step either way); since the slots come in
+  //    cell order, one cursor per row walks forward through them.
+  std::array<std::size_t, (2 * kReach + 1) * (2 * kReach + 1)> cursors{};
   for (Slot& slot : slots_) {
     const std::uint32_t cx = slot.cell / (kSamplingGrid * kSamplingGrid);
     const std::uint32_t cy = slot.cell / kSamplingGrid % kSamplingGrid;
     const std::uint32_t cz = slot.cell % kSamplingGrid;
+    const std::uint32_t z_low = cz - std::min(cz, kReach), z_high = std::min(cz + kReach, kSamplingGrid - 1);
     neighbours_.clear();
     std::uint32_t held = 0, own = 0;
     for (std::uint32_t x = cx - std::min(cx, kReach); x <= std::min(cx + kReach, kSamplingGrid - 1); ++x) {
       for (std::uint32_t y = cy - std::min(cy, kReach); y <= std::min(cy + kReach, kSamplingGrid - 1); ++y) {
-        for (std::uint32_t z = cz - std::min(cz, kReach); z <= std::min(cz + kReach, kSamplingGrid - 1); ++z) {
-          const std::uint32_t other = slot_of_cell_[(x * kSamplingGrid + y) * kSamplingGrid + z];
-          if (other == kEmpty) continue;
-          neighbours_.push_back(other);
+        // One cursor per offset of the row: rows a cell at the grid's edge lacks are skipped,
+        // and each cursor still only moves on.
+        std::size_t& at = cursors[(x + kReach - cx) * (2 * kReach + 1) + (y + kReach - cy)];
+        const std::uint32_t base = (x * kSamplingGrid + y) * kSamplingGrid;
+        while (at < slots_.size() && slots_[at].cell < base + z_low) ++at;
+        for (std::size_t other = at; other < slots_.size() && slots_[other].cell <= base + z_high; ++other) {
+          neighbours_.push_back(static_cast<std::uint32_t>(other));
           held += slots_[other].coarser;
           own += slots_[other].own;
         }
@@ -134,19 +169,11 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     slot.quota = static_cast<std::uint32_t>(std::floor(share + dither));
   }
 
-  // 3. Group the points by cell (a counting sort) and keep the `quota` of lowest hash in each.
-  std::uint32_t offset = 0;
-  for (Slot& slot : slots_) {
-    slot.first = offset;
-    offset += slot.own;
-  }
-  order_.resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    order_[slots_[slot_of_point_[i]].first++] = static_cast<std::uint32_t>(i);
+  // 3. In each cell, keep the `quota` points of lowest hash.
   selected_.assign(points.size(), 0);
   for (const Slot& slot : slots_) {
-    const auto begin = order_.begin() + (slot.first - slot.own);
-    const auto end = order_.begin() + slot.first;
+    const auto begin = order_.begin() + slot.first;
+    const auto end = begin + slot.own;
     const auto keep = begin + std::min(slot.quota, slot.own);
     // Ties (duplicates) are broken by input position, so the choice is deterministic.
     std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
@@ -154,7 +181,6 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     });
     for (auto it = begin; it != keep; ++it) selected_[*it] = 1;
   }
-  for (const Slot& slot : slots_) slot_of_cell_[slot.cell] = kEmpty;  // clean for the next node
 
   // Two-pointer partition carrying the flags along with the points.
   std::size_t front = 0, back = points.size();

@@ -89,12 +89,13 @@ class NodeIndexer {
     std::uint32_t coarser = 0;  // points of coarser levels in it
     std::uint32_t own = 0;      // this node's points in it
     std::uint32_t quota = 0;    // how many of them it keeps
-    std::uint32_t first = 0;    // where its points start in order_, then where they end
+    std::uint32_t first = 0;    // where its points start in order_
   };
-  std::vector<std::uint32_t> slot_of_cell_;  // kSamplingGrid^3, empty between nodes
-  std::vector<Slot> slots_;
+  std::vector<std::uint64_t> cell_keys_;     // per point: its grid cell << 32 | its index
+  std::vector<std::uint64_t> coarser_keys_;  // per coarser point: its grid cell << 32
+  std::vector<std::uint64_t> sort_scratch_;
+  std::vector<Slot> slots_;                // in cell order
   std::vector<std::uint32_t> neighbours_;  // the occupied cells around one cell
-  std::vector<std::uint32_t> slot_of_point_;
   std::vector<std::uint64_t> score_;
   std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> selected_;

@@ -37,11 +37,11 @@ constexpr std::size_t kReadBatchPoints = std::size_t{1} << 18;
 // The counting grid: 128^3 cells, level 7.
 constexpr std::uint32_t kCountLevel = 7;
 constexpr std::size_t kCountCells = std::size_t{1} << (3 * kCountLevel);
-// Bytes a point costs while its chunk is indexed: the point, the indexer's per-point scratch
-// (partition flag, octant, cell, hash, order), slack for vector growth. The indexer's grid
-// scratch (8 MB per thread) comes on top.
-constexpr std::size_t kIndexBytesPerPoint = 72;
-constexpr std::size_t kIndexerScratchBytes = std::size_t{24} << 20;
+// Bytes a point costs while its chunk is indexed: the point (40), the indexer's per-point
+// scratch (cell key and its sort's copy 16, hash 8, order 4, partition flag and octant 2), slack
+// for vector growth. The indexer's other scratch (the coarser points' keys) comes on top.
+constexpr std::size_t kIndexBytesPerPoint = 84;
+constexpr std::size_t kIndexerScratchBytes = std::size_t{16} << 20;
 constexpr std::size_t kChunkBufferPoints = 8192;  // 256 KB of buffered writes per chunk
 // Smaller chunks than this are not worth a task of their own.
 constexpr std::uint64_t kMinChunkPoints = 1 << 20;
@@ -609,7 +609,7 @@ class Builder {
     report_.index_threads = threads;
     roots_.resize(chunks_.size());
 
-    // One indexer (and its 8 MB of grid scratch) per worker thread of this build.
+    // One indexer (and its scratch) per worker thread of this build.
     tbb::enumerable_thread_specific<NodeIndexer> indexers(header_.cube, options_.leaf_max_points);
     tbb::task_arena arena(static_cast<int>(threads));
     arena.execute([&] {
