@@ -36,9 +36,12 @@ double unitInterval(std::uint64_t h) {
   return static_cast<double>(h >> 11) * 0x1.0p-53;
 }
 
-// A pseudo-random number from the bits of a position: the same point scores the same whatever
-// the order of the input or the chunking of the build.
-std::uint64_t positionHash(const Position& p) {
+// Below a tenth of a millimetre a node stops splitting: its points are as good as duplicates.
+constexpr double kMinCellSize = 1e-4 * kSamplingGrid;
+
+}  // namespace
+
+std::uint64_t thinningHash(const Position& p) {
   std::uint64_t h = 0x9E3779B97F4A7C15ULL;
   for (const double c : p) {
     std::uint64_t bits = 0;
@@ -47,11 +50,6 @@ std::uint64_t positionHash(const Position& p) {
   }
   return h;
 }
-
-// Below a tenth of a millimetre a node stops splitting: its points are as good as duplicates.
-constexpr double kMinCellSize = 1e-4 * kSamplingGrid;
-
-}  // namespace
 
 NodeIndexer::NodeIndexer(const Cube& cube, std::uint32_t leaf_max_points)
     : cube_(cube), leaf_max_points_(leaf_max_points) {}
@@ -102,7 +100,7 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Position p{points[i].x, points[i].y, points[i].z};
     cell_keys_[i] = locate(p) << 32 | i;
-    score_[i] = positionHash(p);
+    score_[i] = points[i].hash_high;
   }
   sortByCell(cell_keys_, sort_scratch_);
   coarser_keys_.resize(coarser.size());
@@ -175,9 +173,13 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     const auto begin = order_.begin() + slot.first;
     const auto end = begin + slot.own;
     const auto keep = begin + std::min(slot.quota, slot.own);
-    // Ties (duplicates) are broken by input position, so the choice is deterministic.
+    // By the whole hash: its high half first, the rest on a tie; ties of the whole (duplicates)
+    // are broken by input position, so the choice is deterministic.
     std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
-      return score_[a] != score_[b] ? score_[a] < score_[b] : a < b;
+      if (score_[a] != score_[b]) return score_[a] < score_[b];
+      const std::uint64_t hash_a = thinningHash({points[a].x, points[a].y, points[a].z});
+      const std::uint64_t hash_b = thinningHash({points[b].x, points[b].y, points[b].z});
+      return hash_a != hash_b ? hash_a < hash_b : a < b;
     });
     for (auto it = begin; it != keep; ++it) selected_[*it] = 1;
   }

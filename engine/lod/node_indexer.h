@@ -21,16 +21,24 @@
 
 namespace plumb::lod {
 
-// A point while the octree is built: absolute coordinates and attributes, 40 bytes.
+using Position = std::array<double, 3>;
+
+// The pseudo-random number the thinning ranks a point by: from the bits of its position, so the
+// same point ranks the same whatever the order of the input or the chunking of the build.
+std::uint64_t thinningHash(const Position& p);
+
+// A point while the octree is built: absolute coordinates, attributes and the high half of its
+// thinning hash, 40 bytes (the hash fills what was padding).
 struct BuildPoint {
   double x, y, z;
   std::array<std::uint16_t, 3> rgb;
   std::uint16_t intensity;
   std::uint16_t scan;  // index into the octree's scans (0 when the cloud has a single scan)
+  // thinningHash(x, y, z) >> 32, made once where the point enters the build: every level's
+  // thinning ranks by it and hashes the whole position again only on a tie.
+  std::uint32_t hash_high = 0;
 };
 static_assert(sizeof(BuildPoint) == 40);
-
-using Position = std::array<double, 3>;
 
 // Receives each finished node: its key, its own points and which children exist. Nodes arrive
 // children first. May be called from several threads at once when several indexers run.
@@ -96,7 +104,7 @@ class NodeIndexer {
   std::vector<std::uint64_t> sort_scratch_;
   std::vector<Slot> slots_;                // in cell order
   std::vector<std::uint32_t> neighbours_;  // the occupied cells around one cell
-  std::vector<std::uint64_t> score_;
+  std::vector<std::uint32_t> score_;       // per point: hash_high
   std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> selected_;
   std::vector<std::uint8_t> octants_;

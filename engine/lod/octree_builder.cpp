@@ -38,7 +38,7 @@ constexpr std::size_t kReadBatchPoints = std::size_t{1} << 18;
 constexpr std::uint32_t kCountLevel = 7;
 constexpr std::size_t kCountCells = std::size_t{1} << (3 * kCountLevel);
 // Bytes a point costs while its chunk is indexed: the point (40), the indexer's per-point
-// scratch (cell key and its sort's copy 16, hash 8, order 4, partition flag and octant 2), slack
+// scratch (cell key and its sort's copy 16, hash 4, order 4, partition flag and octant 2), slack
 // for vector growth. The indexer's other scratch (the coarser points' keys) comes on top.
 constexpr std::size_t kIndexBytesPerPoint = 84;
 constexpr std::size_t kIndexerScratchBytes = std::size_t{16} << 20;
@@ -527,7 +527,8 @@ class Builder {
           for (std::size_t i = 0; i < batch.cells.size(); ++i) {
             const io::PointRecord& p = batch.points.points[i];
             const auto scan = static_cast<std::uint16_t>(header_.scan_count > 0 ? first_scan + p.scan : 0);
-            batch.by_chunk[next[batch.cells[i]]++] = {p.x, p.y, p.z, p.rgb, p.intensity, scan};
+            const auto hash_high = static_cast<std::uint32_t>(thinningHash({p.x, p.y, p.z}) >> 32);
+            batch.by_chunk[next[batch.cells[i]]++] = {p.x, p.y, p.z, p.rgb, p.intensity, scan, hash_high};
           }
         },
         [&](const Batch& batch) {
