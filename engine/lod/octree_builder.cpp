@@ -153,6 +153,10 @@ class Builder {
 
   BuildReport run() {
     raiseFileLimit();
+    // Made first, so that an output that cannot be written fails before the inputs are read
+    // (a billion points take minutes a pass).
+    AtomicFile output(options_.output);
+    output_ = &output;
     auto start = Clock::now();
     // Inputs whose headers state their bounds (LAS, LAZ) need no pass for them.
     const std::optional<Box3> declared = declaredBounds();
@@ -182,8 +186,6 @@ class Builder {
     report_.seconds_distributing = secondsSince(start);
 
     start = Clock::now();
-    AtomicFile output(options_.output);
-    output_ = &output;
     const std::array<std::byte, kHeaderBytes> placeholder{};
     output.write(placeholder.data(), placeholder.size());
     indexChunks();

@@ -395,6 +395,10 @@ TEST_F(Cli, SimulateBuildsAnOctreeWithoutAPointFile) {
   EXPECT_NE(direct.out.find("(octree"), std::string::npos) << direct.out;
   ASSERT_EQ(plumb(scan + "-o " + path("room.ply")).exit_code, 0);
   ASSERT_EQ(plumb("import " + path("room.ply") + " -o " + path("imported.plumb")).exit_code, 0);
+  // An octree that cannot be written stops the command before it scans.
+  const Outcome nowhere = plumb(scan + "-o " + path("missing/room.plumb"));
+  EXPECT_NE(nowhere.exit_code, 0);
+  EXPECT_NE(nowhere.err.find(path("missing/room.plumb")), std::string::npos) << nowhere.err;
   EXPECT_EQ(entries(), 4u) << "room.plumb, room.json, room.ply, imported.plumb: nothing else";
 
   const nlohmann::json truth = nlohmann::json::parse(plumb::test::readFile(path("room.json")));
