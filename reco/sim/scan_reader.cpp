@@ -21,10 +21,10 @@ ScanReader::ScanReader(std::string name, ScanSource source)
   info_.format = "simulated scan";
   info_.attributes.colour = true;
   info_.attributes.intensity = true;
-  thread_ = std::thread([this] { produce(); });
 }
 
 ScanReader::~ScanReader() {
+  if (!thread_.joinable()) return;  // never read: the scan never started
   {
     const std::lock_guard lock(mutex_);
     stop_ = true;
@@ -74,6 +74,8 @@ void ScanReader::produce() {
 }
 
 bool ScanReader::read(io::PointBatch& batch, std::size_t max_points) {
+  // The scan starts with the first read: a reader opened for its header alone costs nothing.
+  if (!thread_.joinable()) thread_ = std::thread([this] { produce(); });
   batch.clear();
   while (batch.size() < max_points) {
     if (taken_ == current_.size()) {

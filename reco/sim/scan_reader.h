@@ -1,7 +1,7 @@
 #pragma once
 // A simulated scan read as a point file, so that `plumb simulate -o X.plumb` builds an octree
 // from a scan of any size without writing the scan first (a billion points would be 33 GB of
-// PLY). The scanner runs on a thread of its own, in a oneTBB arena of its own, and hands its
+// PLY). From the first read, the scanner runs on a thread of its own, in a oneTBB arena of its own, and hands its
 // blocks over through a queue of a few blocks. Each reader scans anew and delivers the same
 // points in the same order (the scanner is deterministic for a seed), so the octree builder
 // reads it once per pass as it reads a file.

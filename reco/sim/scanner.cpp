@@ -15,9 +15,11 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <numbers>
 
 #include "engine/core/random.h"
@@ -169,36 +171,44 @@ ScanCounts scan(const Scene& scene, const std::vector<Eigen::Vector3d>& stations
   ScanCounts total;
   std::uint64_t next_block = 0;
   std::uint64_t blocks_done = 0;
+  // The blocks' results circulate through a pool the pipeline's live tokens never outnumber:
+  // oneTBB does not destroy the items in flight when a filter throws (a sink that stops the
+  // scan), so they must own nothing themselves.
+  constexpr std::size_t kLiveBlocks = 8;
+  std::array<BlockResult, kLiveBlocks> pool;
+  std::vector<BlockResult*> free_results;
+  for (BlockResult& result : pool) free_results.push_back(&result);
+  std::mutex free_mutex;
   tbb::parallel_pipeline(
-      /*max_number_of_live_tokens=*/8,
-      tbb::make_filter<void, Block>(tbb::filter_mode::serial_in_order,
-                                    [&](tbb::flow_control& control) -> Block {
-                                      if (next_block == block_count) {
-                                        control.stop();
-                                        return {};
-                                      }
-                                      const std::uint64_t index = next_block++;
-                                      const auto station = static_cast<std::uint32_t>(index / blocks_per_station);
-                                      const auto first =
-                                          static_cast<std::uint32_t>(index % blocks_per_station) * columns_per_block;
-                                      return {station, first, std::min(columns_per_block, columns - first), index};
-                                    }) &
-          tbb::make_filter<Block, std::shared_ptr<BlockResult>>(
-              tbb::filter_mode::parallel,
-              [&](const Block& block) {
-                auto result = std::make_shared<BlockResult>();
-                result->points.reserve(std::uint64_t{block.column_count} * settings.pattern.rows);
-                scanBlock(scene, caster, stations[block.station], beams, settings, block, *result);
-                return result;
-              }) &
-          tbb::make_filter<std::shared_ptr<BlockResult>, void>(
-              tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<BlockResult>& result) {
-                add(total, result->counts);
-                sink(result->points);
-                if (progress) {
-                  progress(static_cast<double>(++blocks_done) / static_cast<double>(block_count));
-                }
-              }));
+      kLiveBlocks,
+      tbb::make_filter<void, Block>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) -> Block {
+        if (next_block == block_count) {
+          control.stop();
+          return {};
+        }
+        const std::uint64_t index = next_block++;
+        const auto station = static_cast<std::uint32_t>(index / blocks_per_station);
+        const auto first = static_cast<std::uint32_t>(index % blocks_per_station) * columns_per_block;
+        return {station, first, std::min(columns_per_block, columns - first), index};
+      }) & tbb::make_filter<Block, BlockResult*>(tbb::filter_mode::parallel, [&](const Block& block) {
+        BlockResult* result = nullptr;
+        {
+          const std::lock_guard lock(free_mutex);
+          result = free_results.back();
+          free_results.pop_back();
+        }
+        result->points.clear();
+        result->counts = {};
+        result->points.reserve(std::uint64_t{block.column_count} * settings.pattern.rows);
+        scanBlock(scene, caster, stations[block.station], beams, settings, block, *result);
+        return result;
+      }) & tbb::make_filter<BlockResult*, void>(tbb::filter_mode::serial_in_order, [&](BlockResult* result) {
+        add(total, result->counts);
+        sink(result->points);
+        if (progress) progress(static_cast<double>(++blocks_done) / static_cast<double>(block_count));
+        const std::lock_guard lock(free_mutex);
+        free_results.push_back(result);
+      }));
   return total;
 }
 
