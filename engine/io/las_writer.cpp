@@ -50,7 +50,7 @@ LasWriter::LasWriter(std::string path, const LasWriterOptions& options) : file_(
 
 void LasWriter::add(const std::array<double, 3>& position, std::uint16_t intensity,
                     const std::array<std::uint16_t, 3>& rgb, std::uint16_t source_id) {
-  if (count_ == std::numeric_limits<std::uint32_t>::max()) {
+  if (count_ == kMaxPoints) {
     throw fileError(file_.path(), "LAS 1.2 holds at most 4,294,967,295 points");
   }
   std::array<std::int32_t, 3> integer{};

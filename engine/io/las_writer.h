@@ -25,7 +25,8 @@ struct LasWriterOptions {
 
 class LasWriter {
  public:
-  static constexpr std::size_t kRecordBytes = 26;  // point data record format 2
+  static constexpr std::size_t kRecordBytes = 26;             // point data record format 2
+  static constexpr std::uint64_t kMaxPoints = 4'294'967'295;  // LAS 1.2 counts its points in 32 bits
 
   LasWriter(std::string path, const LasWriterOptions& options);
 

@@ -160,6 +160,7 @@ class Builder {
     auto start = Clock::now();
     // Inputs whose headers state their bounds (LAS, LAZ) need no pass for them.
     const std::optional<Box3> declared = declaredBounds();
+    declared_ = declared;
     if (declared) {
       settleCube(*declared);
     } else {
@@ -331,8 +332,8 @@ class Builder {
       const std::optional<io::Bounds>& bounds = reader->info().declared_bounds;
       if (!bounds) return std::nullopt;
       for (std::size_t a = 0; a < 3; ++a) {
-        if (!std::isfinite(bounds->min[a]) || !std::isfinite(bounds->max[a]) || bounds->min[a] > bounds->max[a])
-          return std::nullopt;
+        // Also refused: an extent too large for a double (bounds of +-1e308).
+        if (!std::isfinite(bounds->max[a] - bounds->min[a]) || bounds->min[a] > bounds->max[a]) return std::nullopt;
       }
       growBox(box, {bounds->min, bounds->max});
     }
@@ -384,14 +385,16 @@ class Builder {
   // Whether the cube made from the headers' bounds serves the points the count measured: it holds
   // them, and it is within 1 % of the cube their own bounds give (headers round their bounds; a
   // loose header's larger cube would put the levels' spacings off the points').
+  // The points must also lie inside the headers' bounds (but for rounding): the count's
+  // histograms ran over them.
   bool declaredCubeHolds() const {
     const Cube own = cubeAround(header_.bounds);
     const double tolerance = 0.01 * own.size;
+    const double rounding = 1e-6 * own.size;
     if (std::abs(own.size - header_.cube.size) > tolerance) return false;
     for (std::size_t a = 0; a < 3; ++a) {
       if (std::abs(own.origin[a] - header_.cube.origin[a]) > tolerance) return false;
-      if (header_.bounds.min[a] < header_.cube.origin[a] ||
-          header_.bounds.max[a] > header_.cube.origin[a] + header_.cube.size)
+      if (header_.bounds.min[a] < declared_->min[a] - rounding || header_.bounds.max[a] > declared_->max[a] + rounding)
         return false;
     }
     return true;
@@ -403,11 +406,8 @@ class Builder {
   std::vector<std::uint64_t> countCells() {
     const bool first_read = first_scan_.size() < options_.sources.size();
     std::vector<std::uint64_t> counts(kCountCells, 0);
-    // Over the cube: the bounds are not known yet when the headers gave the cube.
-    const Box3 cube_box{header_.cube.origin,
-                        {header_.cube.origin[0] + header_.cube.size, header_.cube.origin[1] + header_.cube.size,
-                         header_.cube.origin[2] + header_.cube.size}};
-    AxisHistograms histograms(first_read ? cube_box : header_.bounds);
+    // Over the headers' bounds while the points' own are not known yet.
+    AxisHistograms histograms(first_read ? *declared_ : header_.bounds);
     Box3 measured = emptyBox();
     std::uint64_t seen = 0;
     pipelinedPass(
@@ -715,6 +715,7 @@ class Builder {
   std::vector<NodeInfo> nodes_;
   std::uint64_t indexed_points_ = 0;
   std::vector<std::size_t> first_scan_;  // per input: the index of its first scan
+  std::optional<Box3> declared_;         // the bounds every input's header states, if all do
 };
 
 }  // namespace

@@ -21,6 +21,7 @@ namespace plumb::reco::sim {
 PointsFormat pointsFormatOf(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".laz") throw fileError(path, "plumb simulate writes LAS (.las), not compressed LAZ");
   return extension == ".las" ? PointsFormat::kLas : PointsFormat::kPly;
 }
 
@@ -205,10 +206,14 @@ SimulationReport simulate(const SimulationRequest& request, const std::function<
   const ScanSource& source = prepared.source;
   SimulationReport report = prepared.report;
 
-  std::unique_ptr<PointsOutput> output = openPointsOutput(request, report.scene, source.settings.seed);
   const std::uint64_t most_points = request.target_points
                                         ? *request.target_points + *request.target_points / 20
                                         : source.settings.pattern.raysPerStation() * source.stations.size();
+  if (pointsFormatOf(request.points_path) == PointsFormat::kLas && most_points > io::LasWriter::kMaxPoints) {
+    throw fileError(request.points_path, "LAS 1.2 holds at most 4,294,967,295 points, and this scan may give " +
+                                             std::to_string(most_points) + "; write PLY or an octree (.plumb)");
+  }
+  std::unique_ptr<PointsOutput> output = openPointsOutput(request, report.scene, source.settings.seed);
   checkFreeSpace(request.points_path, most_points * output->pointBytes() + (1u << 20));
   // Created before the scan so that an unwritable truth path fails in a second, not a minute.
   const std::unique_ptr<AtomicFile> truth = openTruth(request);

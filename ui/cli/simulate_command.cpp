@@ -5,8 +5,10 @@
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "engine/core/atomic_file.h"
@@ -57,8 +59,15 @@ reco::sim::SimulationReport simulateIntoOctree(const SimulateOptions& options) {
   report.counts = *prepared.source.counts;
   report.points_bytes = built.file_bytes;
   report.scan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (truth) reco::sim::finishTruth(*truth, prepared, report);
-  reco::sim::commitWithTruth(truth.get(), request.points_path);
+  // The build committed the octree already: a truth that cannot be written takes it away again.
+  try {
+    if (truth) reco::sim::finishTruth(*truth, prepared, report);
+    reco::sim::commitWithTruth(truth.get(), request.points_path);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(request.points_path, ignored);
+    throw;
+  }
   std::printf(
       "  octree   %s nodes, %u levels; scanned once per pass (bounds %.2f s, counting %.2f s, distributing "
       "%.2f s), indexing %.2f s\n",
@@ -72,7 +81,9 @@ reco::sim::SimulationReport simulateIntoOctree(const SimulateOptions& options) {
 }
 
 bool isOctreePath(const std::string& path) {
-  return path.size() > 6 && path.compare(path.size() - 6, 6, ".plumb") == 0;
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".plumb";
 }
 
 void printReport(const reco::sim::SimulationRequest& request, const reco::sim::SimulationReport& report) {

@@ -370,7 +370,14 @@ void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string te
   render::RendererOptions renderer_options;
   renderer_options.gpu_timing = options_.profile;
   cloud->renderer = std::make_unique<render::PointRenderer>(device_, allocator_, *cloud->cache, renderer_options);
-  cloud->framing = lod::framingBox(*cloud->octree);
+  try {
+    cloud->framing = lod::framingBox(*cloud->octree);
+  } catch (const Error& error) {
+    // An older octree or a COPC file samples its shallow nodes for it: one that cannot be read
+    // shows as the view loads it; frame the bounds meanwhile.
+    cloud->framing = cloud->octree->header().bounds;
+    std::fprintf(stderr, "plumb view: framing on the bounds: %s\n", error.what());
+  }
   const lod::Box3& framing = cloud->framing;
   const VkExtent2D size = window_.framebufferSize();
   const int width =

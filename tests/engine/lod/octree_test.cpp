@@ -300,8 +300,16 @@ TEST(Octree, BoundsFromTheHeadersSaveAPassAndChangeNothing) {
     EXPECT_EQ(header.bounds.min, bounds.min) << c.what;
     EXPECT_EQ(header.bounds.max, bounds.max) << c.what;
     EXPECT_NEAR(header.cube.size, read.octree->header().cube.size, 1e-6 * header.cube.size) << c.what;
+    ASSERT_TRUE(header.framing.has_value()) << c.what;
+    EXPECT_EQ(header.framing->min, read.octree->header().framing->min) << c.what;
+    EXPECT_EQ(header.framing->max, read.octree->header().framing->max) << c.what;
     EXPECT_TRUE(nodeContents(*declared.octree) == reference) << c.what << ": other nodes or points";
   }
+  // Bounds whose extent a double cannot hold are no bounds: the points are read for them.
+  const io::Bounds absurd{{-1e308, -1e308, -1e308}, {1e308, 1e308, 1e308}};
+  const Built read_again = build(dir, {roomWithDeclaredBounds(count, absurd)});
+  EXPECT_FALSE(read_again.report.bounds_from_headers);
+  EXPECT_TRUE(nodeContents(*read_again.octree) == reference);
 }
 
 TEST(Octree, ASinglePointAndDuplicatesBuild) {

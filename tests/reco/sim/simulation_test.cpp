@@ -193,6 +193,24 @@ TEST_F(SimulationTest, WritesLasWithThePointsOfThePly) {
   EXPECT_EQ(reader->info().declared_bounds->max, bounds.max);
 }
 
+// What LAS cannot hold is refused before the scan: more points than its 32-bit count, and LAZ,
+// which plumb simulate does not compress.
+TEST_F(SimulationTest, LasLimitsAreRefusedBeforeScanning) {
+  SimulationRequest r = request(5'000'000'000);
+  r.points_path = (directory_ / "big.las").string();
+  r.truth_path.clear();
+  try {
+    simulate(r);
+    FAIL() << "a LAS of 5 billion points was begun";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("at most 4,294,967,295 points"), std::string::npos) << error.what();
+  }
+  r = request(1'000);
+  r.points_path = (directory_ / "room.laz").string();
+  EXPECT_THROW(simulate(r), Error);
+  EXPECT_EQ(entries(), 0u);
+}
+
 // A ScanReader delivers the scan simulate() writes, point for point, as often as it is opened;
 // one dropped halfway stops its scan.
 TEST_F(SimulationTest, AScanReaderDeliversTheScanEveryTimeItIsOpened) {
