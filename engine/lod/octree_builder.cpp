@@ -159,10 +159,9 @@ class Builder {
     output_ = &output;
     auto start = Clock::now();
     // Inputs whose headers state their bounds (LAS, LAZ) need no pass for them.
-    const std::optional<Box3> declared = declaredBounds();
-    declared_ = declared;
-    if (declared) {
-      settleCube(*declared);
+    declared_ = declaredByHeaders();
+    if (declared_) {
+      settleCube(declared_->bounds);
     } else {
       scanBounds();
     }
@@ -170,14 +169,14 @@ class Builder {
 
     start = Clock::now();
     std::vector<std::uint64_t> counts = countCells();
-    if (declared && !declaredCubeHolds()) {
+    if (declared_ && !declaredCubeHolds()) {
       // The headers' bounds were wrong or loose: count again in the cube of the points' own
       // bounds, which the count measured (the pass the headers saved, spent after all).
       report_.header_bounds_wrong = true;
       settleCube(header_.bounds);
       counts = countCells();
     }
-    report_.bounds_from_headers = declared.has_value();
+    report_.bounds_from_headers = declared_.has_value();
     report_.seconds_counting = secondsSince(start);
 
     start = Clock::now();
@@ -197,6 +196,12 @@ class Builder {
   }
 
  private:
+  // What the inputs' headers state (declaredByHeaders).
+  struct Declared {
+    Box3 bounds;
+    std::uint64_t points = 0;  // 0 when one does not say
+  };
+
   // A batch of input points with what the parallel stage worked out about them.
   struct Batch {
     std::size_t source = 0;  // index of the input it came from
@@ -323,10 +328,12 @@ class Builder {
     }
   }
 
-  // The union of the bounds every input's header states, or nothing when one states none (or
-  // states none that is finite and ordered).
-  std::optional<Box3> declaredBounds() const {
-    Box3 box = emptyBox();
+  // What every input's header states, read in one open of each: the union of their bounds and
+  // the sum of their point counts (0 when one states none: the progress line then shows no
+  // total). Nothing when one states no bounds, or none that are finite and ordered.
+  std::optional<Declared> declaredByHeaders() const {
+    Declared declared{emptyBox(), 0};
+    bool every_count = true;
     for (const BuildSource& source : options_.sources) {
       const std::unique_ptr<io::PointReader> reader = source.open();
       const std::optional<io::Bounds>& bounds = reader->info().declared_bounds;
@@ -335,9 +342,13 @@ class Builder {
         // Also refused: an extent too large for a double (bounds of +-1e308).
         if (!std::isfinite(bounds->max[a] - bounds->min[a]) || bounds->min[a] > bounds->max[a]) return std::nullopt;
       }
-      growBox(box, {bounds->min, bounds->max});
+      growBox(declared.bounds, {bounds->min, bounds->max});
+      const std::optional<std::uint64_t>& points = reader->info().declared_points;
+      every_count = every_count && points.has_value();
+      if (points) declared.points += *points;
     }
-    return box;
+    if (!every_count) declared.points = 0;
+    return declared;
   }
 
   void scanBounds() {
@@ -394,7 +405,8 @@ class Builder {
     if (std::abs(own.size - header_.cube.size) > tolerance) return false;
     for (std::size_t a = 0; a < 3; ++a) {
       if (std::abs(own.origin[a] - header_.cube.origin[a]) > tolerance) return false;
-      if (header_.bounds.min[a] < declared_->min[a] - rounding || header_.bounds.max[a] > declared_->max[a] + rounding)
+      if (header_.bounds.min[a] < declared_->bounds.min[a] - rounding ||
+          header_.bounds.max[a] > declared_->bounds.max[a] + rounding)
         return false;
     }
     return true;
@@ -407,11 +419,11 @@ class Builder {
     const bool first_read = first_scan_.size() < options_.sources.size();
     std::vector<std::uint64_t> counts(kCountCells, 0);
     // Over the headers' bounds while the points' own are not known yet.
-    AxisHistograms histograms(first_read ? *declared_ : header_.bounds);
+    AxisHistograms histograms(first_read ? declared_->bounds : header_.bounds);
     Box3 measured = emptyBox();
     std::uint64_t seen = 0;
     pipelinedPass(
-        "counting", first_read ? declaredPoints() : header_.point_count,
+        "counting", first_read ? declared_->points : header_.point_count,
         [&](Batch& batch) {
           locateCells(batch);
           if (!batch.histograms) batch.histograms.emplace(histograms.bounds());
@@ -432,7 +444,7 @@ class Builder {
     }
     // The inputs changed between passes, or a reader is not deterministic.
     if (seen != header_.point_count) throw Error("an input changed while it was being read; run the import again");
-    // Inside the bounds, also where the histograms spanned the cube.
+    // Inside the points' bounds, also where the histograms spanned the headers' wider ones.
     Box3 framing = histograms.framingBox();
     for (std::size_t a = 0; a < 3; ++a) {
       framing.min[a] = std::clamp(framing.min[a], header_.bounds.min[a], header_.bounds.max[a]);
@@ -440,17 +452,6 @@ class Builder {
     }
     header_.framing = framing;
     return counts;
-  }
-
-  // The points the headers state, for the progress line (0 when one does not say).
-  std::uint64_t declaredPoints() const {
-    std::uint64_t total = 0;
-    for (const BuildSource& source : options_.sources) {
-      const std::optional<std::uint64_t> points = source.open()->info().declared_points;
-      if (!points) return 0;
-      total += *points;
-    }
-    return total;
   }
 
   // The largest chunk that threads can index side by side within the budget.
@@ -715,7 +716,7 @@ class Builder {
   std::vector<NodeInfo> nodes_;
   std::uint64_t indexed_points_ = 0;
   std::vector<std::size_t> first_scan_;  // per input: the index of its first scan
-  std::optional<Box3> declared_;         // the bounds every input's header states, if all do
+  std::optional<Declared> declared_;     // what the inputs' headers state, if every one states bounds
 };
 
 }  // namespace
