@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 
 #include "engine/io/file_source.h"
 #include "engine/io/point_reader.h"
@@ -81,9 +80,7 @@ bool isInteger(std::string_view text, std::uint64_t& value) {
 class AsciiReader final : public PointReader {
  public:
   AsciiReader(const std::string& path, const ReaderOptions& options) : PointReader(path), source_(path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string extension = lowerExtension(path);
     pts_ = extension == ".pts";
     info_.format = "ASCII " + (extension.empty() ? std::string("text") : extension.substr(1));
     readPreamble(options);

@@ -9,18 +9,18 @@
 namespace plumb::io {
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
 bool startsWith(const std::string& text, std::string_view prefix) {
   return text.rfind(prefix, 0) == 0;
 }
 
 }  // namespace
+
+std::string lowerExtension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
 
 std::unique_ptr<PointReader> openPointCloud(const std::string& path, const ReaderOptions& options) {
   const std::string extension = lowerExtension(path);
@@ -45,11 +45,12 @@ std::unique_ptr<PointReader> openPointCloud(const std::string& path, const Reade
     if (extension == ascii) return openAscii(path, options);
   }
   if (extension == ".las" || extension == ".laz") {
-    throw fileError(path, "not a LAS or LAZ file: it does not start with \"LASF\" (a damaged file, or another "
-                          "format under this extension)");
+    throw fileError(path,
+                    "not a LAS or LAZ file: it does not start with \"LASF\" (a damaged file, or another "
+                    "format under this extension)");
   }
-  throw fileError(path,
-                  "unknown point-cloud format; Plumb reads PLY, LAS, LAZ, PCD, E57 and ASCII (.xyz .txt .pts .csv .asc)");
+  throw fileError(
+      path, "unknown point-cloud format; Plumb reads PLY, LAS, LAZ, PCD, E57 and ASCII (.xyz .txt .pts .csv .asc)");
 }
 
 }  // namespace plumb::io

@@ -116,6 +116,9 @@ struct ReaderOptions {
   std::string columns;
 };
 
+// The extension of `path` in lower case, with its dot: "scan.LAS" -> ".las"; "" without one.
+std::string lowerExtension(const std::string& path);
+
 // Opens `path` with the reader its content (and, for ASCII, its extension) calls for.
 // Throws plumb::Error for an unknown or unsupported format (LAZ of the layered coder, LAS 1.4
 // point formats 6 to 10, is recognised and refused).

@@ -1,6 +1,5 @@
 #include "reco/sim/simulation.h"
 
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -19,8 +18,7 @@
 namespace plumb::reco::sim {
 
 PointsFormat pointsFormatOf(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string extension = io::lowerExtension(path);
   if (extension == ".laz") throw fileError(path, "plumb simulate writes LAS (.las), not compressed LAZ");
   return extension == ".las" ? PointsFormat::kLas : PointsFormat::kPly;
 }
@@ -183,15 +181,12 @@ std::unique_ptr<AtomicFile> openTruth(const SimulationRequest& request) {
   return request.truth_path.empty() ? nullptr : std::make_unique<AtomicFile>(request.truth_path);
 }
 
-void finishTruth(AtomicFile& truth, const PreparedScan& prepared, const SimulationReport& report) {
-  const std::string text = truthJson(*prepared.source.scene, prepared.frame, prepared.source.settings, report);
-  truth.write(text.data(), text.size());
-  truth.finish();
-}
-
-void commitWithTruth(AtomicFile* truth, const std::string& points_path) {
+void commitTruthBeside(AtomicFile* truth, const PreparedScan& prepared, const SimulationReport& report,
+                       const std::string& points_path) {
   if (!truth) return;
   try {
+    const std::string text = truthJson(*prepared.source.scene, prepared.frame, prepared.source.settings, report);
+    truth->write(text.data(), text.size());
     truth->commit();
   } catch (...) {
     // Both files or neither: a scan without its truth would pass for a complete result.
@@ -226,9 +221,8 @@ SimulationReport simulate(const SimulationRequest& request, const std::function<
   output->finish();
   report.points_bytes = output->byteCount();
   report.scan_seconds = secondsSince(scan_start);
-  if (truth) finishTruth(*truth, prepared, report);
   output->commit();
-  commitWithTruth(truth.get(), request.points_path);
+  commitTruthBeside(truth.get(), prepared, report, request.points_path);
   return report;
 }
 

@@ -62,11 +62,11 @@ struct PreparedScan {
 PreparedScan prepareScan(const SimulationRequest& request);
 
 // The ground-truth file of a request (null when it asks for none), created at once so that an
-// unwritable path fails before the scan; finishTruth() writes it for the scan `report` describes;
-// commitWithTruth() moves it into place once `points_path` is, and removes that again when it
+// unwritable path fails before the scan; commitTruthBeside() writes it for the scan `report`
+// describes and moves it into place once `points_path` is there, and removes that again when it
 // cannot: both outputs or neither.
 std::unique_ptr<AtomicFile> openTruth(const SimulationRequest& request);
-void finishTruth(AtomicFile& truth, const PreparedScan& prepared, const SimulationReport& report);
-void commitWithTruth(AtomicFile* truth, const std::string& points_path);
+void commitTruthBeside(AtomicFile* truth, const PreparedScan& prepared, const SimulationReport& report,
+                       const std::string& points_path);
 
 }  // namespace plumb::reco::sim

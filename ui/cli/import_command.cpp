@@ -1,7 +1,5 @@
 // plumb import: point files to a Plumb octree.
 
-#include <sys/resource.h>
-
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
@@ -10,6 +8,7 @@
 
 #include "engine/lod/octree_builder.h"
 #include "ui/cli/arguments.h"
+#include "ui/cli/build_report.h"
 #include "ui/cli/command.h"
 #include "ui/cli/progress_line.h"
 
@@ -58,8 +57,6 @@ Command addImportCommand(CLI::App& plumb) {
     const lod::BuildReport report = lod::buildOctree(build);
     progress.finish();
 
-    const double seconds =
-        report.seconds_bounds + report.seconds_counting + report.seconds_distributing + report.seconds_indexing;
     std::printf("imported %s points from %zu file%s into %s\n", withThousands(report.points).c_str(),
                 options->inputs.size(), options->inputs.size() == 1 ? "" : "s", options->output.c_str());
     if (report.skipped_non_finite > 0) {
@@ -71,26 +68,7 @@ Command addImportCommand(CLI::App& plumb) {
       std::printf("  scans    %zu, each point keeps its scan (plumb render --colour scan; plumb info lists them)\n",
                   report.scans.size());
     }
-    std::printf("  octree   %s nodes, %u levels, %.1f MB\n", withThousands(report.nodes).c_str(), report.depth + 1,
-                static_cast<double>(report.file_bytes) / 1e6);
-    std::printf("  chunks   %zu (largest %s points), indexed on %u thread%s within %zu MiB\n", report.chunks,
-                withThousands(report.largest_chunk_points).c_str(), report.index_threads,
-                report.index_threads == 1 ? "" : "s", options->memory_mb);
-    rusage usage{};
-    ::getrusage(RUSAGE_SELF, &usage);
-    std::printf("  memory   peak resident %.0f MB (budget %zu MiB)\n", static_cast<double>(usage.ru_maxrss) / 1024.0,
-                options->memory_mb);
-    // Inputs whose headers state their bounds (LAS, LAZ) are read twice, not three times.
-    char bounds_pass[32];
-    std::snprintf(bounds_pass, sizeof bounds_pass, "bounds %.2f", report.seconds_bounds);
-    const std::string bounds = !report.bounds_from_headers ? bounds_pass
-                               : report.header_bounds_wrong
-                                   ? "bounds from the headers, which the points did not fit: counted twice"
-                                   : "bounds from the headers";
-    std::printf(
-        "  time     %.2f s (%s, counting %.2f, distributing %.2f, indexing %.2f): %.2f million points per second\n",
-        seconds, bounds.c_str(), report.seconds_counting, report.seconds_distributing, report.seconds_indexing,
-        static_cast<double>(report.points) / std::max(seconds, 1e-9) / 1e6);
+    printBuildReport(report, options->memory_mb);
     return 0;
   };
   return {sub, run};

@@ -1,22 +1,20 @@
 // plumb simulate: a terrestrial laser scan of a built-in scene, with its ground truth.
 
-#include <sys/resource.h>
-
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include "engine/core/atomic_file.h"
+#include "engine/io/point_reader.h"
 #include "engine/lod/octree_builder.h"
 #include "reco/sim/scan_reader.h"
 #include "reco/sim/scenes.h"
 #include "reco/sim/simulation.h"
 #include "ui/cli/arguments.h"
+#include "ui/cli/build_report.h"
 #include "ui/cli/command.h"
 #include "ui/cli/progress_line.h"
 
@@ -59,31 +57,14 @@ reco::sim::SimulationReport simulateIntoOctree(const SimulateOptions& options) {
   report.counts = *prepared.source.counts;
   report.points_bytes = built.file_bytes;
   report.scan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // The build committed the octree already: a truth that cannot be written takes it away again.
-  try {
-    if (truth) reco::sim::finishTruth(*truth, prepared, report);
-    reco::sim::commitWithTruth(truth.get(), request.points_path);
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(request.points_path, ignored);
-    throw;
-  }
-  std::printf(
-      "  octree   %s nodes, %u levels; scanned once per pass (bounds %.2f s, counting %.2f s, distributing "
-      "%.2f s), indexing %.2f s\n",
-      withThousands(built.nodes).c_str(), built.depth + 1, built.seconds_bounds, built.seconds_counting,
-      built.seconds_distributing, built.seconds_indexing);
-  rusage usage{};
-  ::getrusage(RUSAGE_SELF, &usage);
-  std::printf("  memory   peak resident %.0f MB (budget %zu MiB)\n", static_cast<double>(usage.ru_maxrss) / 1024.0,
-              options.memory_mb);
+  reco::sim::commitTruthBeside(truth.get(), prepared, report, request.points_path);
+  // The passes' times include the scans: each pass scanned again.
+  printBuildReport(built, options.memory_mb);
   return report;
 }
 
 bool isOctreePath(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".plumb";
+  return io::lowerExtension(path) == ".plumb";
 }
 
 void printReport(const reco::sim::SimulationRequest& request, const reco::sim::SimulationReport& report) {
