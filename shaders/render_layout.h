@@ -42,10 +42,16 @@ struct SplatChunk {
   // Device address of the chunk's first scan index (16 bits each, two to a word; lod::NodePoints::scans);
   // 0: the cloud is one scan. Chunks start at multiples of kChunkPoints, so it is word-aligned.
   uint64_t scans;
+  uint64_t surfels;  // device address of the chunk's first Surfel (kSurfelWords each)
   uint point_count;        // at most kChunkPoints
   float elevation_offset;  // the node origin's z above ResolvePush's elevation base
-  uint point_size_px;      // each point covers a square of this side (1 to kMaxPointSize)
-  float clip_offset[3];    // the node origin less the clip region's anchor (ClipPlanes)
+  // Each point is a disc in the plane of its surface (engine/render/surfels.h), of its surfel's
+  // radius times its octant's scale: the drawn cloud's density there against the node's own
+  // (engine/render/splat_spacing.h). Octant i as lod::CellKey::child numbers them, split at
+  // half_cell_m (the node's half size) in node coordinates.
+  float octant_scale[8];
+  float half_cell_m;
+  float clip_offset[3];  // the node origin less the clip region's anchor (ClipPlanes)
 };
 
 // The region the splat keeps (engine/render/clip_region.h): half-spaces, each kept where
@@ -62,9 +68,21 @@ struct ClipPlanes {
   float planes[4 * kMaxClipPlanes];
 };
 
-// Points of a node whose children are not drawn, where they lie more than a pixel apart on
-// screen, are splatted as squares of about their spacing, so that surfaces stay closed.
-const uint kMaxPointSize = 4u;
+// What each point covers (render::SplatShape): its pixel; a square facing the eye of half-side
+// its surfel's radius; its surfel's disc.
+const uint kSplatPoint = 0u;
+const uint kSplatSquare = 1u;
+const uint kSplatSurfel = 2u;
+
+// A surfel (engine/render/surfels.h): the normal, octahedral (x | y << 16, signed 16-bit
+// fractions; kSurfelFacingTheEye: none, the disc faces the eye), and the disc's radius in
+// metres as a float (0: one pixel).
+const uint kSurfelWords = 2;
+const uint kSurfelFacingTheEye = 0x80008000u;
+
+// The largest half-extent of a point's disc on screen, in pixels: a disc nearer the eye than
+// that is drawn this size (the cost of a disc grows with its area on screen).
+const uint kMaxSplatHalfPx = 512u;
 
 struct SplatPush {
   uint64_t chunks;      // SplatChunk[chunk_count]
@@ -74,6 +92,12 @@ struct SplatPush {
   uint chunk_count;
   float near_m;  // points nearer than this to the eye are clipped
   uint64_t clip;  // ClipPlanes; 0: every point kept
+  // A length of 1 m at view depth d spans pixels_per_metre / d pixels (perspective), or
+  // pixels_per_metre at any depth (orthographic): the scale of kSplatSquare's squares.
+  float pixels_per_metre;
+  uint perspective;
+  uint shape;  // kSplatPoint, kSplatSquare or kSplatSurfel
+  uint reserved;
 };
 
 struct ResolvePush {

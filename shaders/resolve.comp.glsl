@@ -7,6 +7,7 @@
 //      by the colour mode: RGB, intensity (grey), elevation (a ramp), segment or scan (a palette).
 //   3. Eye-dome lighting (Boucheny 2009, as in Potree): the pixel darkens by how much nearer its
 //      8 neighbours are, in log2 of the depth, which outlines edges and steps without normals.
+//      Steps below kEdlFloor are noise, not edges.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_GOOGLE_include_directive : require
@@ -27,6 +28,9 @@ layout(push_constant) uniform Push { ResolvePush push; };
 
 const uint64_t kEmpty = ~uint64_t(0);
 const int kFillNeighbours = 5;
+// Eye-dome lighting ignores steps under 0.4 % of the depth (log2 of 1.004): the scanner's noise
+// and the slightly tilted surfels of one surface, not its edges.
+const float kEdlFloor = 0.00576;
 const ivec2 kNeighbours[8] = ivec2[](ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0), ivec2(1, 0),
                                      ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
 
@@ -134,7 +138,7 @@ void main() {
     float response = 0.0;
     for (int n = 0; n < 8; ++n) {
       const uint bits = depthBitsAt(p + kNeighbours[n]);
-      if (bits != kEmptyHigh) response += max(0.0, log_depth - log2(uintBitsToFloat(bits)));
+      if (bits != kEmptyHigh) response += max(0.0, log_depth - log2(uintBitsToFloat(bits)) - kEdlFloor);
     }
     colour *= exp(-response * 300.0 / 8.0 * push.edl_strength);
   }

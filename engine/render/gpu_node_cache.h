@@ -8,6 +8,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <list>
 #include <unordered_map>
@@ -28,9 +29,11 @@ namespace plumb::render {
 struct GpuNode {
   gpu::Buffer points;
   std::uint32_t point_count = 0;
-  VkDeviceSize scans_offset = 0;  // where the scan indices start in `points`; 0: none
-  std::uint64_t last_frame = 0;   // the last frame that drew it
-  gpu::Buffer labels;             // uint32 per point (segment colours), when uploaded
+  std::array<std::uint32_t, 8> octant_points{};  // splat_spacing.h's countOctants
+  VkDeviceSize scans_offset = 0;                 // where the scan indices start in `points`; 0: none
+  VkDeviceSize surfels_offset = 0;               // where the surfels (surfels.h) start in `points`
+  std::uint64_t last_frame = 0;                  // the last frame that drew it
+  gpu::Buffer labels;                            // uint32 per point (segment colours), when uploaded
   std::uint64_t labels_version = 0;
 };
 
@@ -50,9 +53,10 @@ class GpuNodeCache {
 
   // Records the upload of `points` into `commands` (a copy out of the ring; the caller puts a
   // barrier before the first read) and returns the new resident node, marked as drawn by
-  // `frame`. Null when the ring has no room this frame: try again in a later one.
-  const GpuNode* upload(const lod::NodePoints& points, VkCommandBuffer commands, gpu::UploadRing& ring,
-                        std::uint64_t frame);
+  // `frame`. Null when the ring has no room this frame: try again in a later one. `cell_size`:
+  // the node's size, for its surfels and its octants (GpuNode::octant_points).
+  const GpuNode* upload(const lod::NodePoints& points, double cell_size, VkCommandBuffer commands,
+                        gpu::UploadRing& ring, std::uint64_t frame);
 
   // The node's segment labels of `version` on the GPU, uploading them (recorded into `commands`)
   // when the node holds another version; null when the ring has no room this frame. The node

@@ -112,7 +112,6 @@ NodeSelection selectNodes(const lod::Octree& octree, const view::Camera& camera,
     }
     const double spacing_px = octree.spacing(best.node->key.level) * best.size_px / cube.cellSize(best.node->key.level);
     selection.nodes.push_back(best.node);
-    selection.spacing_px.push_back(spacing_px);
     selection.points += best.node->point_count;
     if (spacing_px <= options.max_spacing_px) continue;
     for (int octant = 0; octant < 8; ++octant) {

@@ -34,12 +34,9 @@ struct SelectionOptions {
 
 struct NodeSelection {
   std::vector<const lod::NodeInfo*> nodes;  // most important first; a node's parent comes before it
-  // Per node of `nodes`: the spacing on screen of the points of its level and those above, in
-  // pixels at the node's nearest point to the eye.
-  std::vector<double> spacing_px;
-  std::uint64_t points = 0;     // in `nodes`, at most the budget
-  std::uint64_t culled = 0;     // nodes considered and found outside the frustum
-  bool budget_reached = false;  // a node was left out for the budget
+  std::uint64_t points = 0;                 // in `nodes`, at most the budget
+  std::uint64_t culled = 0;                 // nodes considered and found outside the frustum
+  bool budget_reached = false;              // a node was left out for the budget
 };
 
 // The camera must be valid (view::validateCamera).

@@ -19,7 +19,6 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <unordered_set>
 
 #include "engine/core/error.h"
 #include "engine/gpu/buffer.h"
@@ -37,7 +36,9 @@
 #include "engine/render/intensity_range.h"
 #include "engine/render/overlay_pass.h"
 #include "engine/render/render_target.h"
+#include "engine/render/splat_spacing.h"
 #include "engine/render/splat_transform.h"
+#include "engine/render/surfels.h"
 #include "engine/view/camera.h"
 #include "shaders/render_layout.h"
 
@@ -51,8 +52,8 @@ constexpr std::uint32_t kResolveCode[] =
 #include "shaders/resolve.comp.inc"
     ;
 
-static_assert(sizeof(shader::SplatChunk) == 128, "SplatChunk differs from its std430 layout");
-static_assert(sizeof(shader::SplatPush) == 40, "SplatPush differs from its std430 layout");
+static_assert(sizeof(shader::SplatChunk) == 168, "SplatChunk differs from its std430 layout");
+static_assert(sizeof(shader::SplatPush) == 56, "SplatPush differs from its std430 layout");
 static_assert(sizeof(shader::ResolvePush) == 72, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
 
@@ -84,6 +85,17 @@ std::uint32_t shaderColourMode(ColourMode mode) {
       return shader::kColourScan;
     default:
       return shader::kColourSegment;
+  }
+}
+
+std::uint32_t shaderSplatShape(SplatShape shape) {
+  switch (shape) {
+    case SplatShape::kPoint:
+      return shader::kSplatPoint;
+    case SplatShape::kSquare:
+      return shader::kSplatSquare;
+    default:
+      return shader::kSplatSurfel;
   }
 }
 
@@ -354,7 +366,6 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
     const lod::NodeInfo* info;
     const GpuNode* node;
     VkDeviceAddress labels;  // 0: none
-    double spacing_px;
   };
   std::vector<Drawn> drawn;
   drawn.reserve(selection.nodes.size());
@@ -368,7 +379,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       const std::shared_ptr<const lod::NodePoints> points =
           loading == NodeLoading::kWait ? r.nodes.get(info->key) : r.nodes.tryGet(info->key);
       if (points) {
-        node = r.gpu_nodes.upload(*points, commands, r.ring, value);
+        node = r.gpu_nodes.upload(*points, octree.cube().cellSize(info->key.level), commands, r.ring, value);
         if (node != nullptr) stats.bytes_uploaded += node->points.size();
       }
     }
@@ -385,7 +396,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
               : r.gpu_nodes.labels(info->key, found->second, labels->version, commands, r.ring, value, r.deletions);
       if (buffer != nullptr) label_address = buffer->address();
     }
-    drawn.push_back({info, node, label_address, selection.spacing_px[n]});
+    drawn.push_back({info, node, label_address});
   }
   r.ring.close(value);
 
@@ -399,20 +410,15 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
 
   const double elevation_base = octree.header().bounds.min[2];
   const Eigen::Vector3d clip_anchor = settings.clip.anchor();
-  // Where no child of a node is drawn, its points are the finest there: splat them as squares
-  // of their spacing on screen.
-  std::unordered_set<lod::CellKey, lod::CellKeyHash> drawn_keys;
-  for (const Drawn& d : drawn) drawn_keys.insert(d.info->key);
-  auto pointSize = [&](const Drawn& d) {
-    if (!settings.adaptive_point_size) return 1u;
-    for (int octant = 0; octant < 8; ++octant) {
-      if ((d.info->child_mask & (1u << octant)) && drawn_keys.count(d.info->key.child(octant))) return 1u;
-    }
-    return static_cast<std::uint32_t>(std::clamp<long>(std::lround(d.spacing_px), 1, shader::kMaxPointSize));
-  };
+  // Each point a disc of the drawn cloud's spacing around it (surfels.h, splat_spacing.h).
+  std::vector<DrawnNode> drawn_nodes;
+  drawn_nodes.reserve(drawn.size());
+  for (const Drawn& d : drawn) drawn_nodes.push_back({d.info->key, d.node->point_count, d.node->octant_points});
+  const std::vector<std::array<float, 8>> scales = octantRadiusScales(drawn_nodes);
   std::size_t c = 0;
-  for (const Drawn& d : drawn) {
-    const std::uint32_t point_size = pointSize(d);
+  for (std::size_t n = 0; n < drawn.size(); ++n) {
+    const Drawn& d = drawn[n];
+    const auto half_cell_m = static_cast<float>(0.5 * octree.cube().cellSize(d.info->key.level));
     const std::array<double, 3> origin = octree.cube().cellMin(d.info->key);
     const SplatTransform transform = splatTransform(camera, origin);
     for (std::uint32_t first = 0; first < d.node->point_count; first += shader::kChunkPoints) {
@@ -426,7 +432,9 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                                     VkDeviceAddress{first} * sizeof(std::uint16_t);
       chunk.point_count = std::min(shader::kChunkPoints, d.node->point_count - first);
       chunk.elevation_offset = static_cast<float>(origin[2] - elevation_base);
-      chunk.point_size_px = point_size;
+      chunk.surfels = d.node->points.address() + d.node->surfels_offset + VkDeviceAddress{first} * sizeof(Surfel);
+      std::copy(scales[n].begin(), scales[n].end(), chunk.octant_scale);
+      chunk.half_cell_m = half_cell_m;
       for (std::size_t a = 0; a < 3; ++a) {
         chunk.clip_offset[a] = static_cast<float>(origin[a] - clip_anchor[static_cast<Eigen::Index>(a)]);
       }
@@ -451,7 +459,11 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                  target.height,
                                  count,
                                  static_cast<float>(camera.near_m),
-                                 settings.clip.active() ? r.writeClip(slot, settings.clip) : 0};
+                                 settings.clip.active() ? r.writeClip(slot, settings.clip) : 0,
+                                 static_cast<float>(1.0 / view::metresPerPixel(camera, 1.0)),
+                                 camera.projection == view::Projection::kPerspective ? 1u : 0u,
+                                 shaderSplatShape(settings.splat),
+                                 0u};
     r.splat.dispatch(commands, push, count);
     gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);

@@ -51,15 +51,22 @@ enum class ColourMode : std::uint8_t {
   kSegment,
 };
 
+// What each point covers. Its size, the drawn cloud's spacing around it: the distance to its
+// 4th nearest neighbour (surfels.h) scaled by the density of the level drawn there
+// (splat_spacing.h).
+enum class SplatShape : std::uint8_t {
+  kPoint,   // its pixel alone (the bare splat's work, for the benchmark)
+  kSquare,  // a square facing the eye (Potree's adaptive point size)
+  kSurfel,  // a disc in the plane of its surface (surfels.h): closed surfaces, sharp edges
+};
+
 struct RenderSettings {
   ColourMode colour = ColourMode::kAuto;
   bool edl = true;
   float edl_strength = 0.35f;  // 1 is Potree's strength; scanner noise darkens dense surfaces then
   Rgba background{30, 32, 36, 255};
   SelectionOptions selection;
-  // Points of a node with no drawn child cover a square of their spacing on screen (1 to 4 px);
-  // off: every point is one pixel (the bare splat's work, for the benchmark).
-  bool adaptive_point_size = true;
+  SplatShape splat = SplatShape::kSurfel;
   // An overlay hides behind the cloud where it lies further than the cloud's point at its pixel
   // by more than this fraction of the depth plus 1 cm (scanner noise, polygons fitted to it).
   float overlay_depth_tolerance = 0.005f;

@@ -84,6 +84,11 @@ Eigen::Matrix4d viewMatrix(const Camera& camera) {
   return view;
 }
 
+double metresPerPixel(const Camera& camera, double depth) {
+  if (camera.projection == Projection::kOrthographic) return camera.ortho_height_m / camera.viewport_height_px;
+  return 2.0 * depth * std::tan(camera.fov_deg * std::numbers::pi / 360.0) / camera.viewport_height_px;
+}
+
 Eigen::Matrix4d projectionMatrix(const Camera& camera) {
   assert(!findCameraProblem(camera) && "validate the camera (validateCamera) before building its matrices");
   const double aspect = aspectRatio(camera);

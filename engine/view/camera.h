@@ -73,4 +73,7 @@ Eigen::Matrix4d projectionMatrix(const Camera& camera);
 // viewport_width_px / viewport_height_px.
 double aspectRatio(const Camera& camera);
 
+// Metres per pixel in the plane at `depth` in front of the eye (orthographic: at any depth).
+double metresPerPixel(const Camera& camera, double depth);
+
 }  // namespace plumb::view

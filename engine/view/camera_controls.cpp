@@ -21,12 +21,6 @@ Axes axesOf(const Camera& camera) {
   return {right, right.cross(forward), forward};
 }
 
-// Metres per pixel in the plane at `depth` in front of the eye.
-double metresPerPixel(const Camera& camera, double depth) {
-  if (camera.projection == Projection::kOrthographic) return camera.ortho_height_m / camera.viewport_height_px;
-  return 2.0 * depth * std::tan(camera.fov_deg * std::numbers::pi / 360.0) / camera.viewport_height_px;
-}
-
 // The rotation of a look-around or an orbit: `pitch` about the camera's right axis (positive
 // looks down), limited so that the view direction keeps kPoleMargin from the z axis, then `yaw`
 // about world z. Applied to the view direction and the up vector alike, it turns the whole

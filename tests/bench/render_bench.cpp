@@ -1,13 +1,17 @@
 // Renderer speed (docs/benchmarks.md). Prints, asserts nothing.
 //
 //   plumb_bench_render DIR [--points N] [--budgets A,B,..] [--size WxH] [--frames F] [--octree FILE]
+//                          [--camera JSON]
 //
 // Builds an octree of a hall (the six faces of a 30 x 20 x 6 m box, N points, 6 million by
 // default) in DIR, or opens FILE (a cloud of any size: the billion-point run of
-// docs/benchmarks.md), and looks at it from the standard iso view at WxH (1920x1080). For each
-// budget (1, 2 and 5 million points by default), once every node is on the GPU:
-//   - the frame time: render() to the GPU's end of the frame, the median of F frames;
-//   - the splat and the resolve in GPU time (timestamps);
+// docs/benchmarks.md), and looks at it from the standard iso view, or the camera of JSON (as
+// `plumb render --camera` reads it), at WxH (1920x1080). For each budget (1, 2 and 5 million
+// points by default), once every node is on the GPU:
+//   - the frame time: render() to the GPU's end of the frame, the median of F frames, with each
+//     point a surfel (the default), and with each a square (Potree's adaptive point size);
+//   - the splat and the resolve of the surfels in GPU time (timestamps);
+//   - the surfels' estimate on the CPU (surfels.h, once per node on upload), in points per second;
 //   - the splat again with one-pixel points (no adaptive point size), in points per second;
 //   - the bare splat (shaders/bare_splat.comp.glsl) of the same points, as one flat array with
 //     one transform, in points per second, and the one-pixel splat as a share of it.
@@ -38,6 +42,8 @@
 #include "engine/render/node_selection.h"
 #include "engine/render/point_renderer.h"
 #include "engine/render/splat_transform.h"
+#include "engine/render/surfels.h"
+#include "engine/view/camera_json.h"
 #include "engine/view/view_presets.h"
 #include "shaders/render_layout.h"
 #include "tests/support/generated_cloud.h"
@@ -151,8 +157,9 @@ int main(int argc, char** argv) {
   app.add_option("--budgets", budgets, "Point budgets")->delimiter(',');
   app.add_option("--size", size, "WIDTHxHEIGHT");
   app.add_option("--frames", frames, "Frames timed per budget")->check(CLI::Range(1, 1000));
-  std::string octree_path;
+  std::string octree_path, camera_path;
   app.add_option("--octree", octree_path, "An octree to look at instead of the hall");
+  app.add_option("--camera", camera_path, "A camera (JSON) to look through instead of the iso view");
   CLI11_PARSE(app, argc, argv);
   int width = 1920, height = 1080;
   if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width < 1 || height < 1) {
@@ -175,18 +182,23 @@ int main(int argc, char** argv) {
     const auto octree = lod::Octree::open(octree_path);
     point_count = octree->header().point_count;
     const lod::Box3 framing = lod::framingBox(*octree);
-    const view::Camera camera =
-        view::presetCamera(view::ViewPreset::kIso, {framing.min[0], framing.min[1], framing.min[2]},
-                           {framing.max[0], framing.max[1], framing.max[2]}, width, height);
+    view::Camera camera = view::presetCamera(view::ViewPreset::kIso, {framing.min[0], framing.min[1], framing.min[2]},
+                                             {framing.max[0], framing.max[1], framing.max[2]}, width, height);
+    if (!camera_path.empty()) {
+      camera = view::readCameraJson(camera_path);
+      camera.viewport_width_px = width;
+      camera.viewport_height_px = height;
+    }
 
     const gpu::Instance instance(gpu::instanceOptionsFromEnvironment());
     const gpu::Device device(instance, gpu::deviceChoiceFromEnvironment());
     gpu::MemoryAllocator allocator(device);
-    std::printf("%s of %llu points (octree %.1f s, %llu nodes), %d x %d, iso view, on %s\n", octree_path.c_str(),
+    std::printf("%s of %llu points (octree %.1f s, %llu nodes), %d x %d, %s, on %s\n", octree_path.c_str(),
                 static_cast<unsigned long long>(point_count), build_s,
-                static_cast<unsigned long long>(octree->header().node_count), width, height, device.name().c_str());
-    std::printf("%10s %10s %10s %10s %10s %10s %12s %12s %7s\n", "budget", "points", "frame_ms", "splat_ms",
-                "resolve_ms", "1px_splat", "1px_Mpt/s", "bare_Mpt/s", "share");
+                static_cast<unsigned long long>(octree->header().node_count), width, height,
+                camera_path.empty() ? "iso view" : camera_path.c_str(), device.name().c_str());
+    std::printf("%10s %10s %10s %10s %10s %10s %10s %12s %12s %7s %12s\n", "budget", "points", "frame_ms", "splat_ms",
+                "resolve_ms", "square_ms", "1px_splat", "1px_Mpt/s", "bare_Mpt/s", "share", "surfel_Mpt/s");
     for (const std::uint64_t budget : budgets) {
       lod::NodeCache nodes(octree, std::size_t{4} << 30);
       render::RendererOptions options;
@@ -196,24 +208,28 @@ int main(int argc, char** argv) {
       render::RenderSettings settings;
       settings.selection.point_budget = budget;
       render::FrameStats stats = renderer.renderComplete(camera, settings);
-      // Frames as the viewer draws them; then the splat alone with one-pixel points, the bare
-      // kernel's work, for the comparison.
-      std::vector<double> frame_ms, splat_ms, resolve_ms, one_pixel_splat_ms;
-      for (const bool adaptive : {true, false}) {
-        settings.adaptive_point_size = adaptive;
+      // Frames as the viewer draws them; with squares instead of surfels; then the splat alone
+      // with one-pixel points, the bare kernel's work, for the comparison.
+      std::vector<double> frame_ms, splat_ms, resolve_ms, square_frame_ms, one_pixel_splat_ms;
+      for (const render::SplatShape shape :
+           {render::SplatShape::kSurfel, render::SplatShape::kSquare, render::SplatShape::kPoint}) {
+        settings.splat = shape;
         for (int frame = 0; frame < frames + 1; ++frame) {  // the first frame warms up
           const auto start = std::chrono::steady_clock::now();
           stats = renderer.render(camera, settings);
           const render::GpuTimings timings = *renderer.gpuTimings();  // waits for the frame's end
+          const double elapsed_ms =
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
           if (frame == 0) continue;
-          if (!adaptive) {
+          if (shape == render::SplatShape::kPoint) {
             one_pixel_splat_ms.push_back(timings.splat_ms);
-            continue;
+          } else if (shape == render::SplatShape::kSquare) {
+            square_frame_ms.push_back(elapsed_ms);
+          } else {
+            frame_ms.push_back(elapsed_ms);
+            splat_ms.push_back(timings.splat_ms);
+            resolve_ms.push_back(timings.resolve_ms);
           }
-          frame_ms.push_back(
-              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-          splat_ms.push_back(timings.splat_ms);
-          resolve_ms.push_back(timings.resolve_ms);
         }
       }
 
@@ -233,13 +249,21 @@ int main(int argc, char** argv) {
         }
       }
       const double bare_ms = bareSplatMs(device, allocator, flat, camera, origin, frames);
+      // The surfels of the selected nodes, as their upload estimates them.
+      const auto surfels_start = std::chrono::steady_clock::now();
+      for (const lod::NodeInfo* info : selection.nodes) {
+        render::estimateSurfels(nodes.get(info->key)->points, octree->cube().cellSize(info->key.level),
+                                octree->cube().cellSize(info->key.level) / 8.0);
+      }
+      const double surfels_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surfels_start).count();
       const double one_pixel = median(one_pixel_splat_ms);
       const double drawn = static_cast<double>(stats.points_drawn);
-      std::printf("%10llu %10llu %10.2f %10.2f %10.2f %10.2f %12.1f %12.1f %6.0f%%\n",
+      std::printf("%10llu %10llu %10.2f %10.2f %10.2f %10.2f %10.2f %12.1f %12.1f %6.0f%% %12.1f\n",
                   static_cast<unsigned long long>(budget), static_cast<unsigned long long>(stats.points_drawn),
-                  median(frame_ms), median(splat_ms), median(resolve_ms), one_pixel, drawn / one_pixel / 1e3,
-                  static_cast<double>(flat.size()) / bare_ms / 1e3,
-                  100.0 * (drawn / one_pixel) / (static_cast<double>(flat.size()) / bare_ms));
+                  median(frame_ms), median(splat_ms), median(resolve_ms), median(square_frame_ms), one_pixel,
+                  drawn / one_pixel / 1e3, static_cast<double>(flat.size()) / bare_ms / 1e3,
+                  100.0 * (drawn / one_pixel) / (static_cast<double>(flat.size()) / bare_ms),
+                  static_cast<double>(flat.size()) / surfels_s / 1e6);
     }
     // Figures taken while the validation layer reports a mistake are no figures: the run fails.
     const std::vector<std::string> messages = instance.validationMessages();

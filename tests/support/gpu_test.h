@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 #include <vulkan/vulkan.h>
 
+#include <memory>
 #include <string>
 
 #include "engine/gpu/device.h"
 #include "engine/gpu/instance.h"
+#include "engine/gpu/memory.h"
 #include "engine/gpu/vk_check.h"
 
 namespace plumb::test {
@@ -37,5 +39,25 @@ inline VkBuffer createBuffer(const gpu::Device& device, VkDeviceSize size,
 inline void expectNoValidationMessages(const gpu::Instance& instance) {
   for (const std::string& message : instance.validationMessages()) ADD_FAILURE() << message;
 }
+
+// A fixture whose tests each get a device (testDeviceChoice) and its allocator, with validation
+// on: any message the layer records fails the test.
+class GpuTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    instance_ = std::make_unique<gpu::Instance>(gpu::InstanceOptions{.validation = true});
+    device_ = std::make_unique<gpu::Device>(*instance_, testDeviceChoice());
+    allocator_ = std::make_unique<gpu::MemoryAllocator>(*device_);
+  }
+  void TearDown() override {
+    allocator_.reset();
+    device_.reset();
+    expectNoValidationMessages(*instance_);
+  }
+
+  std::unique_ptr<gpu::Instance> instance_;
+  std::unique_ptr<gpu::Device> device_;
+  std::unique_ptr<gpu::MemoryAllocator> allocator_;
+};
 
 }  // namespace plumb::test

@@ -52,7 +52,7 @@ void keepForInspection(const io::RgbaImage& image, const std::string& name) {
     io::writePng(image, std::string(directory) + "/" + name + ".png");
 }
 
-class PointRendererTest : public ::testing::Test {
+class PointRendererTest : public test::GpuTest {
  protected:
   static void SetUpTestSuite() {
     directory_ = std::make_unique<test::TempDirectory>("plumb_point_renderer_test");
@@ -64,17 +64,6 @@ class PointRendererTest : public ::testing::Test {
     walls_.reset();
     far_walls_.reset();
     directory_.reset();
-  }
-
-  void SetUp() override {
-    instance_ = std::make_unique<gpu::Instance>(gpu::InstanceOptions{.validation = true});
-    device_ = std::make_unique<gpu::Device>(*instance_, test::testDeviceChoice());
-    allocator_ = std::make_unique<gpu::MemoryAllocator>(*device_);
-  }
-  void TearDown() override {
-    allocator_.reset();
-    device_.reset();
-    test::expectNoValidationMessages(*instance_);
   }
 
   static RenderSettings flat() {
@@ -105,9 +94,6 @@ class PointRendererTest : public ::testing::Test {
   static inline std::unique_ptr<test::TempDirectory> directory_;
   static inline std::shared_ptr<const lod::Octree> walls_, far_walls_;
   static inline test::SceneOffset far_offset_;
-  std::unique_ptr<gpu::Instance> instance_;
-  std::unique_ptr<gpu::Device> device_;
-  std::unique_ptr<gpu::MemoryAllocator> allocator_;
 };
 
 TEST_F(PointRendererTest, TheFrontViewShowsEachPlaneWhereItIs) {
@@ -163,7 +149,9 @@ TEST_F(PointRendererTest, EyeDomeLightingOutlinesTheSquareAndLeavesFlatWallsAlon
     EXPECT_TRUE(near(on.pixel(column, row), off.pixel(column, row))) << "at x " << x << ", z " << z;
   }
   // Just outside the square, on the wall 2 m behind it, the square's pixels are nearer: dark.
-  for (const auto& [x, z] : {std::pair{-1.02, 1.5}, std::pair{0.0, 2.02}, std::pair{1.02, 1.5}}) {
+  // (Its grid runs from x = -1 to 0.98 and z = 1 to 1.98, its discs 2.8 cm past the edges: the
+  // pixel centred at x = -1.02 is still the square's.)
+  for (const auto& [x, z] : {std::pair{-1.05, 1.5}, std::pair{0.0, 2.02}, std::pair{1.02, 1.5}}) {
     const auto [column, row] = test::frontPixel(camera, x, z);
     const auto lit_channels = channels(on.pixel(column, row)), flat_channels = channels(off.pixel(column, row));
     const int brightest = std::max({flat_channels[0], flat_channels[1], flat_channels[2]});
@@ -173,8 +161,8 @@ TEST_F(PointRendererTest, EyeDomeLightingOutlinesTheSquareAndLeavesFlatWallsAlon
   }
 }
 
-// Close up, the walls' 2 cm grid lies 1.8 pixels apart on screen (1.1 cm pixels): the finest
-// nodes are splatted as 2 x 2 squares and every pixel of the walls is still covered.
+// Close up, the walls' 2 cm grid lies 1.8 pixels apart on screen (1.1 cm pixels): every pixel of
+// the walls is covered.
 TEST_F(PointRendererTest, CloseUpSurfacesStayClosed) {
   lod::NodeCache nodes(walls_, 64 << 20);
   PointRenderer renderer(*device_, *allocator_, nodes);
@@ -196,6 +184,42 @@ TEST_F(PointRendererTest, CloseUpSurfacesStayClosed) {
   EXPECT_EQ(empty, 0);
   const auto [column, row] = test::frontPixel(camera, -0.3, 0.5);
   EXPECT_TRUE(near(image.pixel(column, row), kRed));
+}
+
+// Surfels close a surface up to its outline and hardly past it: a close-up of the blue square's
+// top right corner, 600 pixels to the metre. Its points lie on a 2 cm grid, the last ones at
+// x = 0.98 and z = 1.98; each disc's radius is its 4th nearest neighbour's distance (2 cm inside,
+// 2.8 cm along an edge, 4 cm at the corner and more where a node's border cuts the neighbours
+// off), so the square shows up to x = 1 and z = 2 (where its grid's next row would be) and never
+// a grid step beyond.
+TEST_F(PointRendererTest, CloseUpEdgesStaySharp) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  view::Camera camera = test::wallSceneFront(400, 300);
+  camera.ortho_height_m = 0.5;
+  camera.position.x() = camera.target.x() = 0.9;
+  camera.position.z() = camera.target.z() = 1.9;
+  renderer.renderComplete(camera, flat());
+  const io::RgbaImage image = renderer.readColour();
+  keepForInspection(image, "close_up_edge");
+  const double metres_per_px = camera.ortho_height_m / camera.viewport_height_px;
+  int holes = 0, spilled = 0, past_outline = 0;
+  for (int row = 0; row < camera.viewport_height_px; ++row) {
+    for (int column = 0; column < camera.viewport_width_px; ++column) {
+      const double x = 0.9 + (column + 0.5 - 0.5 * camera.viewport_width_px) * metres_per_px;
+      const double z = 1.9 - (row + 0.5 - 0.5 * camera.viewport_height_px) * metres_per_px;
+      const bool blue = near(image.pixel(column, row), kBlue);
+      if (x < 0.98 && z < 1.98 && !blue) ++holes;
+      if (blue && (x > 1.0 || z > 2.0)) ++past_outline;
+      if (blue && (x > 1.0 + test::kGridStep || z > 2.0 + test::kGridStep)) ++spilled;
+    }
+  }
+  EXPECT_EQ(holes, 0);
+  EXPECT_EQ(spilled, 0);
+  // Past the outline, the edges' discs: on average less than half a grid step (6 pixels) along
+  // the 470 pixels of edge in view (the top edge from column 0 to 260, the right one from row 90
+  // down).
+  EXPECT_LT(past_outline, 470 * 6) << past_outline << " pixels past the outline";
 }
 
 // Intensity is grey by the points' intensity (30,000 of 65,535 here); elevation runs the ramp

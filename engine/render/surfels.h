@@ -1,0 +1,40 @@
+#pragma once
+// The splat's surfels: each point drawn as a small disc in the plane of the surface around it
+// (Pfister et al. 2000, "Surfels: surface elements as rendering primitives"), so that a
+// surface closes at any distance with the depth of the surface itself, whatever its slant: no
+// steps between splats for eye-dome lighting to outline, no square reaching past an edge seen
+// at a grazing angle.
+//
+// Per point of a node, from its nearest neighbours among the node's points: the normal (the
+// least principal axis of the point and its 12 nearest; none where they lie along a line) and the spacing (the distance
+// to the 4th nearest, the radius of a disc that closes the surface wherever the scan's pattern leaves gaps: as the
+// reference image of tests/support/surface_coverage.h). The renderer computes them once per node, when it uploads the
+// node's points.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/lod/octree_format.h"
+
+namespace plumb::render {
+
+// A surfel whose neighbours span no plane: its disc faces the eye (never an encoded normal,
+// whose fractions stop at -32767).
+constexpr std::uint32_t kFacingTheEye = 0x80008000u;
+
+// As the splat shader reads it (shaders/render_layout.h, kSurfelWords).
+struct Surfel {
+  std::uint32_t normal = kFacingTheEye;  // octahedral: x | y << 16, each a signed 16-bit fraction
+  float radius_m = 0.0f;                 // 0: a lone point (fewer than 4 neighbours within max_radius): one pixel
+};
+
+// The surfels of a node's `points` (positions relative to the node's corner, inside a cube of
+// side `cell_size`). Neighbours farther than `max_radius` are not looked for.
+std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> points, double cell_size, double max_radius);
+
+// The octahedral encoding of a unit normal, and back (the shader's decoding is the same).
+std::uint32_t encodeNormal(float x, float y, float z);
+void decodeNormal(std::uint32_t packed, float& x, float& y, float& z);
+
+}  // namespace plumb::render
