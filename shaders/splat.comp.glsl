@@ -4,6 +4,10 @@
 // of (view depth << 32 | point id), so the nearest point wins whatever order the GPU runs in,
 // and ties go to the lower id (ids: render_layout.h). Depths are positive floats, whose bits order like integers.
 // Points the clip region (ClipPlanes) cuts away are skipped: not drawn, so never picked.
+// Each point then covers a disc in the plane of its surface (a surfel, engine/render/surfels.h)
+// of the drawn cloud's spacing around it, at the plane's depth in each pixel: surfaces close at
+// any distance, and where discs of one surface overlap their depths agree but for noise. Or,
+// for the comparison, a square facing the eye (Potree's adaptive point size), or its pixel alone.
 #extension GL_EXT_shader_atomic_int64 : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_buffer_reference : require
@@ -20,6 +24,51 @@ layout(buffer_reference, std430, buffer_reference_align = 8) buffer Visibility {
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Clip { ClipPlanes region; };
 layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Surfels { uint word[]; };
 
+layout(push_constant) uniform Push { SplatPush push; };
+
+// Discs under this radius on screen are their point's pixel alone: the resolve fills the
+// one-pixel holes left between such points, and most points of a frame are such.
+const float kMinDiscPx = 1.0;
+
+// A point's disc on screen, cast exactly: the homography from pixels to the disc's plane
+// (plane_from_pixel * (x, y, 1) = (u, v, 1) * w, the disc where u^2 + v^2 <= 1) and the plane's
+// depth, linear in (u, v).
+struct Disc {
+  mat3 plane_from_pixel;
+  float depth;       // at the disc's centre
+  vec2 depth_slope;  // per unit of u and v
+  uint id;
+  ivec2 rows;  // the first and one past the last row it covers, on screen
+};
+
+// Casts the disc: per row, the span of pixels whose centres lie inside it (where
+// u'^2 + v'^2 - w'^2 <= 0, a quadratic along the row), each at the plane's depth.
+void castDisc(const Disc d, const Visibility visibility, const uint width) {
+  // Rows of the homography: u', v', w' as dot products with (x, y, 1).
+  const vec3 gu = vec3(d.plane_from_pixel[0][0], d.plane_from_pixel[1][0], d.plane_from_pixel[2][0]);
+  const vec3 gv = vec3(d.plane_from_pixel[0][1], d.plane_from_pixel[1][1], d.plane_from_pixel[2][1]);
+  const vec3 gw = vec3(d.plane_from_pixel[0][2], d.plane_from_pixel[1][2], d.plane_from_pixel[2][2]);
+  const float a = gu.x * gu.x + gv.x * gv.x - gw.x * gw.x;
+  if (!(a > 0.0)) return;  // not an ellipse on screen
+  for (int y = d.rows.x; y < d.rows.y; ++y) {
+    const float yc = float(y) + 0.5;
+    const float bu = gu.y * yc + gu.z, bv = gv.y * yc + gv.z, bw = gw.y * yc + gw.z;
+    const float b = gu.x * bu + gv.x * bv - gw.x * bw;  // half the linear coefficient
+    const float c = bu * bu + bv * bv - bw * bw;
+    const float discriminant = b * b - a * c;
+    if (!(discriminant >= 0.0)) continue;
+    const float root = sqrt(discriminant);
+    // Pixel centres x + 0.5 between the roots.
+    const float low = clamp(ceil((-b - root) / a - 0.5), 0.0, float(width));
+    const float high = clamp(floor((-b + root) / a - 0.5) + 1.0, 0.0, float(width));
+    for (int x = int(low); x < int(high); ++x) {
+      const vec3 uvw = d.plane_from_pixel * vec3(float(x) + 0.5, yc, 1.0);
+      const float pixel_depth = d.depth + dot(d.depth_slope, uvw.xy / uvw.z);
+      atomicMin(visibility.pixel[uint(y) * width + uint(x)], (uint64_t(floatBitsToUint(pixel_depth)) << 32) | uint64_t(d.id));
+    }
+  }
+}
+
 // A unit normal from its octahedral encoding (engine/render/surfels.cpp's encodeNormal).
 vec3 decodeNormal(const uint packed) {
   const vec2 e = max(vec2(float(int(packed << 16) >> 16), float(int(packed) >> 16)) / 32767.0, vec2(-1.0));
@@ -27,8 +76,6 @@ vec3 decodeNormal(const uint packed) {
   if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
   return normalize(n);
 }
-
-layout(push_constant) uniform Push { SplatPush push; };
 
 // Whether the clip region keeps a point at `p` (relative to the region's anchor).
 bool kept(const Clip clip, const vec3 p) {
@@ -44,6 +91,70 @@ bool kept(const Clip clip, const vec3 p) {
     }
   }
   return clip.region.box_planes == 0u || inside_box != (clip.region.keep_outside_box != 0u);
+}
+
+// Point i of the chunk: drawn at its own pixel; for a square, the square too (false); for a
+// surfel of a disc beyond its pixel, that disc (true).
+bool surfelOf(const uint i, const SplatChunk chunk, const mat4 clip_from_node, const vec4 depth_row, const Points points,
+              const Surfels surfels, const uvec2 size, out Disc disc) {
+  Visibility visibility = Visibility(push.visibility);
+  const vec3 position = PLUMB_POINT_POSITION(points.word, i * kPointWords);
+  const vec3 clip_offset = vec3(chunk.clip_offset[0], chunk.clip_offset[1], chunk.clip_offset[2]);
+  if (push.clip != 0 && !kept(Clip(push.clip), position + clip_offset)) return false;
+  const float depth = dot(depth_row, vec4(position, 1.0));
+  if (!(depth >= push.near_m)) return false;  // behind the near plane (or NaN)
+  // Off screen, a point's disc may still reach into it.
+  const vec4 c0 = clip_from_node * vec4(position, 1.0);
+  const vec2 centre = c0.xy / c0.w;
+  const uint id = (gl_WorkGroupID.x << kChunkBits) | i;
+  const uint64_t value = (uint64_t(floatBitsToUint(depth)) << 32) | uint64_t(id);
+  if (all(greaterThanEqual(centre, vec2(0.0))) && all(lessThan(centre, vec2(size)))) {
+    const uvec2 pixel = uvec2(centre);
+    atomicMin(visibility.pixel[pixel.y * push.width + pixel.x], value);
+  }
+
+  const bvec3 upper = greaterThanEqual(position, vec3(chunk.half_cell_m));
+  const uint octant = uint(upper.x) | (uint(upper.y) << 1) | (uint(upper.z) << 2);
+  const float radius_m = uintBitsToFloat(surfels.word[i * kSurfelWords + 1]) * chunk.octant_scale[octant];
+  // Its disc's radius on screen, were it facing the eye.
+  const float radius_px = radius_m * push.pixels_per_metre / (push.perspective != 0u ? depth : 1.0);
+  if (radius_px < kMinDiscPx) return false;
+  if (push.shape == kSplatSquare) {
+    // A square facing the eye, flat at the point's depth (Potree's adaptive point size).
+    const float half_side = min(radius_px, float(kMaxSplatHalfPx));
+    const ivec2 low = ivec2(clamp(floor(centre - half_side), vec2(0.0), vec2(size)));
+    const ivec2 high = ivec2(clamp(floor(centre + half_side) + 1.0, vec2(0.0), vec2(size)));
+    for (int y = low.y; y < high.y; ++y) {
+      for (int x = low.x; x < high.x; ++x) atomicMin(visibility.pixel[uint(y) * push.width + uint(x)], value);
+    }
+    return false;
+  }
+  // The disc's axes: in its plane, or facing the eye (the view direction in node coordinates is
+  // depth_row.xyz, whose length is 1: the view is a rotation and a translation).
+  const uint packed = surfels.word[i * kSurfelWords];
+  const vec3 normal = packed == kSurfelFacingTheEye ? depth_row.xyz : decodeNormal(packed);
+  const vec3 t1 = normalize(cross(normal, abs(normal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+  const vec3 t2 = cross(normal, t1);
+  // A disc reaching to the near plane would not be an ellipse on screen: its pixel alone.
+  if (!(depth - radius_m > push.near_m)) return false;
+  // Pixels (times w) from the disc's (u, v, 1): the clip transform's x, y and w rows.
+  const vec4 eu = clip_from_node * vec4(radius_m * t1, 0.0), ev = clip_from_node * vec4(radius_m * t2, 0.0);
+  const mat3 pixel_from_plane = mat3(eu.xyw, ev.xyw, c0.xyw);
+  // The rows between the ellipse's horizontal tangents: lines (0, 1, -y) of its dual conic
+  // pixel_from_plane * diag(1, 1, -1) * transpose(pixel_from_plane).
+  const vec3 hy = vec3(eu.y, ev.y, c0.y), hw = vec3(eu.w, ev.w, c0.w);
+  const float dyy = hy.x * hy.x + hy.y * hy.y - hy.z * hy.z;
+  const float dyw = hy.x * hw.x + hy.y * hw.y - hy.z * hw.z;
+  const float dww = hw.x * hw.x + hw.y * hw.y - hw.z * hw.z;
+  const float tangents = dyw * dyw - dyy * dww;
+  if (!(dww < 0.0) || !(tangents >= 0.0)) return false;  // no ellipse (edge-on or at the eye)
+  const float root = sqrt(tangents);
+  const vec2 extent = vec2((dyw + root) / dww, (dyw - root) / dww);
+  // Clamped as floats: a disc beside the eye projects far off screen.
+  const vec2 rows = clamp(vec2(floor(min(extent.x, extent.y)), floor(max(extent.x, extent.y)) + 1.0), 0.0, float(size.y));
+  disc = Disc(inverse(pixel_from_plane), depth, radius_m * vec2(dot(depth_row.xyz, t1), dot(depth_row.xyz, t2)), id,
+              ivec2(rows));
+  return disc.rows.y > disc.rows.x;
 }
 
 void main() {
@@ -72,69 +183,10 @@ void main() {
     }
     return;
   }
-  // Each point a disc in the plane of its surface (a surfel), as the affine map of the disc to the
-  // screen: pixel offsets from the point's projection back to the disc's (u, v), covered where
-  // u^2 + v^2 <= 1, at the depth of the disc's plane there. Its own pixel always.
+  // Each point a disc in the plane of its surface (a surfel), or a square facing the eye.
   Surfels surfels = Surfels(chunk.surfels);
   for (uint i = gl_LocalInvocationID.x; i < chunk.point_count; i += kSplatGroupSize) {
-    const vec3 position = PLUMB_POINT_POSITION(points.word, i * kPointWords);
-    if (clipped && !kept(Clip(push.clip), position + clip_offset)) continue;
-    const float depth = dot(depth_row, vec4(position, 1.0));
-    if (!(depth >= push.near_m)) continue;  // behind the near plane (or NaN)
-    // Off screen, a point's disc may still reach into it.
-    const vec4 c0 = clip_from_node * vec4(position, 1.0);
-    const vec2 centre = c0.xy / c0.w;
-    const uint id_bits = first_id | i;
-    if (all(greaterThanEqual(centre, vec2(0.0))) && all(lessThan(centre, vec2(size)))) {
-      const uvec2 pixel = uvec2(centre);
-      atomicMin(visibility.pixel[pixel.y * push.width + pixel.x], (uint64_t(floatBitsToUint(depth)) << 32) | id_bits);
-    }
-
-    const bvec3 upper = greaterThanEqual(position, vec3(chunk.half_cell_m));
-    const uint octant = uint(upper.x) | (uint(upper.y) << 1) | (uint(upper.z) << 2);
-    const float radius_m = uintBitsToFloat(surfels.word[i * kSurfelWords + 1]) * chunk.octant_scale[octant];
-    if (radius_m == 0.0) continue;
-    if (push.shape == kSplatSquare) {
-      // A square facing the eye, flat at the point's depth (Potree's adaptive point size).
-      const float half_side =
-          min(radius_m * push.pixels_per_metre / (push.perspective != 0u ? depth : 1.0), float(kMaxSplatHalfPx));
-      const ivec2 low = ivec2(clamp(floor(centre - half_side), vec2(0.0), vec2(size)));
-      const ivec2 high = ivec2(clamp(floor(centre + half_side) + 1.0, vec2(0.0), vec2(size)));
-      const uint64_t value = (uint64_t(floatBitsToUint(depth)) << 32) | uint64_t(id_bits);
-      for (int y = low.y; y < high.y; ++y) {
-        for (int x = low.x; x < high.x; ++x) atomicMin(visibility.pixel[uint(y) * push.width + uint(x)], value);
-      }
-      continue;
-    }
-    // The disc's axes: in its plane, or facing the eye (the view direction in node coordinates
-    // is depth_row.xyz, whose length is 1: the view is a rotation and a translation).
-    const uint packed = surfels.word[i * kSurfelWords];
-    const vec3 normal = packed == kSurfelFacingTheEye ? depth_row.xyz : decodeNormal(packed);
-    const vec3 t1 = normalize(cross(normal, abs(normal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
-    const vec3 t2 = cross(normal, t1);
-    const vec4 c1 = clip_from_node * vec4(position + radius_m * t1, 1.0);
-    const vec4 c2 = clip_from_node * vec4(position + radius_m * t2, 1.0);
-    if (c1.w <= 0.0 || c2.w <= 0.0) continue;
-    const mat2 screen_from_disc = mat2(c1.xy / c1.w - centre, c2.xy / c2.w - centre);
-    const float det = determinant(screen_from_disc);
-    if (abs(det) < 0.25) continue;  // edge-on, or under a pixel: the point's own pixel
-    const mat2 disc_from_screen = inverse(screen_from_disc);
-    const vec2 depth_slope = radius_m * vec2(dot(depth_row.xyz, t1), dot(depth_row.xyz, t2));
-    const vec2 extent = min(vec2(length(vec2(screen_from_disc[0].x, screen_from_disc[1].x)),
-                                 length(vec2(screen_from_disc[0].y, screen_from_disc[1].y))),
-                            vec2(float(kMaxSplatHalfPx)));
-    // Clamped as floats: a point beside the eye projects far off screen.
-    const ivec2 low = ivec2(clamp(floor(centre - extent), vec2(0.0), vec2(size)));
-    const ivec2 high = ivec2(clamp(floor(centre + extent) + 1.0, vec2(0.0), vec2(size)));
-    for (int y = low.y; y < high.y; ++y) {
-      for (int x = low.x; x < high.x; ++x) {
-        const vec2 uv = disc_from_screen * (vec2(x, y) + 0.5 - centre);
-        if (dot(uv, uv) > 1.0) continue;
-        const float pixel_depth = depth + dot(depth_slope, uv);
-        if (!(pixel_depth >= push.near_m)) continue;
-        atomicMin(visibility.pixel[uint(y) * push.width + uint(x)],
-                  (uint64_t(floatBitsToUint(pixel_depth)) << 32) | uint64_t(id_bits));
-      }
-    }
+    Disc disc;
+    if (surfelOf(i, chunk, clip_from_node, depth_row, points, surfels, size, disc)) castDisc(disc, visibility, push.width);
   }
 }

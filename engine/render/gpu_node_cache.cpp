@@ -10,7 +10,6 @@
 #include "engine/gpu/upload_ring.h"
 #include "engine/lod/octree.h"
 #include "engine/render/splat_spacing.h"
-#include "engine/render/surfels.h"
 
 namespace plumb::render {
 
@@ -29,18 +28,17 @@ const GpuNode* GpuNodeCache::use(const lod::CellKey& key, std::uint64_t frame) {
   return &found->second.node;
 }
 
-const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, double cell_size, VkCommandBuffer commands,
-                                    gpu::UploadRing& ring, std::uint64_t frame) {
+const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, std::span<const Surfel> surfels, double cell_size,
+                                    VkCommandBuffer commands, gpu::UploadRing& ring, std::uint64_t frame) {
   if (points.points.empty()) return nullptr;  // the renderer skips empty nodes (COPC has some)
   assert((points.scans.empty() || points.scans.size() == points.points.size()) && "a scan index per point, or none");
+  assert(surfels.size() == points.points.size() && "a surfel per point");
   const VkDeviceSize point_bytes = points.points.size() * sizeof(lod::PackedPoint);
   const VkDeviceSize scan_bytes = points.scans.size() * sizeof(std::uint16_t);
   const VkDeviceSize surfels_offset = (point_bytes + scan_bytes + 7) / 8 * 8;  // surfels are 8-byte aligned
   const VkDeviceSize bytes = surfels_offset + points.points.size() * sizeof(Surfel);
   const std::optional<gpu::UploadSpan> span = ring.allocate(bytes);
   if (!span) return nullptr;
-  // Neighbours farther than an eighth of the node are no surface of it.
-  const std::vector<Surfel> surfels = estimateSurfels(points.points, cell_size, cell_size / 8.0);
   std::memcpy(span->data, points.points.data(), point_bytes);
   if (!points.scans.empty()) std::memcpy(span->data + point_bytes, points.scans.data(), scan_bytes);
   std::memcpy(span->data + surfels_offset, surfels.data(), surfels.size() * sizeof(Surfel));
@@ -52,8 +50,8 @@ const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, double cell_s
       gpu::Buffer(device_, allocator_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                   gpu::kDeviceMemory, name.c_str());
   node.point_count = static_cast<std::uint32_t>(points.points.size());
-  node.octant_points = countOctants(points.points, static_cast<float>(0.5 * cell_size));
   node.surfels_offset = surfels_offset;
+  node.octant_points = countOctants(points.points, static_cast<float>(0.5 * cell_size));
   node.scans_offset = points.scans.empty() ? 0 : point_bytes;
   const VkBufferCopy copy{span->offset, 0, bytes};
   vkCmdCopyBuffer(commands, ring.buffer(), node.points.handle(), 1, &copy);

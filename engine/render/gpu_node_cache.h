@@ -11,10 +11,12 @@
 #include <array>
 #include <cstdint>
 #include <list>
+#include <span>
 #include <unordered_map>
 
 #include "engine/gpu/buffer.h"
 #include "engine/lod/cell_key.h"
+#include "engine/render/surfels.h"
 
 namespace plumb::gpu {
 class DeletionQueue;
@@ -51,12 +53,12 @@ class GpuNodeCache {
   // The resident node of `key`, marked as drawn by `frame`; null when it is not resident.
   const GpuNode* use(const lod::CellKey& key, std::uint64_t frame);
 
-  // Records the upload of `points` into `commands` (a copy out of the ring; the caller puts a
-  // barrier before the first read) and returns the new resident node, marked as drawn by
-  // `frame`. Null when the ring has no room this frame: try again in a later one. `cell_size`:
-  // the node's size, for its surfels and its octants (GpuNode::octant_points).
-  const GpuNode* upload(const lod::NodePoints& points, double cell_size, VkCommandBuffer commands,
-                        gpu::UploadRing& ring, std::uint64_t frame);
+  // Records the upload of `points` and their `surfels` into `commands` (a copy out of the ring;
+  // the caller puts a barrier before the first read) and returns the new resident node, marked
+  // as drawn by `frame`. Null when the ring has no room this frame: try again in a later one.
+  // `cell_size`: the node's size, where its octants split (GpuNode::octant_points).
+  const GpuNode* upload(const lod::NodePoints& points, std::span<const Surfel> surfels, double cell_size,
+                        VkCommandBuffer commands, gpu::UploadRing& ring, std::uint64_t frame);
 
   // The node's segment labels of `version` on the GPU, uploading them (recorded into `commands`)
   // when the node holds another version; null when the ring has no room this frame. The node

@@ -38,6 +38,7 @@
 #include "engine/render/render_target.h"
 #include "engine/render/splat_spacing.h"
 #include "engine/render/splat_transform.h"
+#include "engine/render/surfel_estimates.h"
 #include "engine/render/surfels.h"
 #include "engine/view/camera.h"
 #include "shaders/render_layout.h"
@@ -146,6 +147,7 @@ struct PointRenderer::Resources {
         timeline(d),
         ring(d, a, o.upload_ring_bytes),
         gpu_nodes(d, a, o.gpu_budget_bytes),
+        surfels(o.background),
         slots{Slot{gpu::CommandPool(d, "frame slot 0"), {}, {}}, Slot{gpu::CommandPool(d, "frame slot 1"), {}, {}}},
         readback_pool(d, "readback"),
         overlay_pass(d, a) {
@@ -191,6 +193,7 @@ struct PointRenderer::Resources {
   gpu::DeletionQueue deletions;
   gpu::UploadRing ring;
   GpuNodeCache gpu_nodes;
+  SurfelEstimates surfels;  // of streamed nodes, before their upload
   std::unique_ptr<RenderTarget> target;
   std::array<Slot, kFramesInFlight> slots;
   gpu::CommandPool readback_pool;
@@ -215,12 +218,13 @@ struct PointRenderer::Resources {
     target = std::make_unique<RenderTarget>(device, allocator, width, height);
   }
 
-  void ensureChunkCapacity(Slot& slot, std::size_t chunks) {
-    const VkDeviceSize bytes = std::max<std::size_t>(chunks, 1) * sizeof(shader::SplatChunk);
-    if (slot.chunks && slot.chunks.size() >= bytes) return;
-    // The slot's last frame is done (paced): its table may go now.
-    slot.chunks = gpu::Buffer(device, allocator, std::max<VkDeviceSize>(bytes, 2 * slot.chunks.size()),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, "chunk table");
+  // At least `bytes` of host memory in `buffer`, made anew (twice as big) when it has less; the
+  // slot's last frame is done (paced), so its old one may go now.
+  void ensureHostBuffer(gpu::Buffer& buffer, VkDeviceSize bytes, const char* name) {
+    bytes = std::max<VkDeviceSize>(bytes, 1);
+    if (buffer && buffer.size() >= bytes) return;
+    buffer = gpu::Buffer(device, allocator, std::max<VkDeviceSize>(bytes, 2 * buffer.size()),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, name);
   }
 
   // The region's planes, relative to its anchor, into the slot's ClipPlanes; its address.
@@ -379,8 +383,17 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       const std::shared_ptr<const lod::NodePoints> points =
           loading == NodeLoading::kWait ? r.nodes.get(info->key) : r.nodes.tryGet(info->key);
       if (points) {
-        node = r.gpu_nodes.upload(*points, octree.cube().cellSize(info->key.level), commands, r.ring, value);
-        if (node != nullptr) stats.bytes_uploaded += node->points.size();
+        // Headless renders wait for the surfels; a streaming frame uploads the node once they
+        // are ready.
+        const double cell_size = octree.cube().cellSize(info->key.level);
+        const std::shared_ptr<const std::vector<Surfel>> surfels =
+            loading == NodeLoading::kWait ? std::make_shared<const std::vector<Surfel>>(nodeSurfels(*points, cell_size))
+                                          : r.surfels.find(points, cell_size);
+        if (surfels) node = r.gpu_nodes.upload(*points, *surfels, cell_size, commands, r.ring, value);
+        if (node != nullptr) {
+          stats.bytes_uploaded += node->points.size();
+          r.surfels.forget(info->key);
+        }
       }
     }
     if (node == nullptr) {
@@ -403,7 +416,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   // 3. The chunk table.
   std::size_t chunk_count = 0;
   for (const Drawn& d : drawn) chunk_count += (d.node->point_count + shader::kChunkPoints - 1) / shader::kChunkPoints;
-  r.ensureChunkCapacity(slot, chunk_count);
+  r.ensureHostBuffer(slot.chunks, chunk_count * sizeof(shader::SplatChunk), "chunk table");
   auto* chunks = static_cast<shader::SplatChunk*>(slot.chunks.mapped());
   r.last_chunks.clear();
   r.last_chunks.reserve(chunk_count);

@@ -84,6 +84,9 @@ struct RendererOptions {
   std::uint64_t gpu_budget_bytes = std::uint64_t{768} << 20;  // resident node points
   std::uint64_t upload_ring_bytes = std::uint64_t{64} << 20;  // per frame at most this is uploaded
   bool gpu_timing = false;  // time the splat and the resolve with GPU timestamps (benchmarks)
+  // Runs the surfels' estimates of streamed nodes (surfel_estimates.h) in the background (the
+  // viewer's job system); empty: a task group of the renderer's own.
+  std::function<void(std::function<void()> work)> background;
 };
 
 // GPU time of the last frame's passes (RendererOptions::gpu_timing).

@@ -42,7 +42,7 @@
 #include "engine/render/node_selection.h"
 #include "engine/render/point_renderer.h"
 #include "engine/render/splat_transform.h"
-#include "engine/render/surfels.h"
+#include "engine/render/surfel_estimates.h"
 #include "engine/view/camera_json.h"
 #include "engine/view/view_presets.h"
 #include "shaders/render_layout.h"
@@ -252,8 +252,7 @@ int main(int argc, char** argv) {
       // The surfels of the selected nodes, as their upload estimates them.
       const auto surfels_start = std::chrono::steady_clock::now();
       for (const lod::NodeInfo* info : selection.nodes) {
-        render::estimateSurfels(nodes.get(info->key)->points, octree->cube().cellSize(info->key.level),
-                                octree->cube().cellSize(info->key.level) / 8.0);
+        render::nodeSurfels(*nodes.get(info->key), octree->cube().cellSize(info->key.level));
       }
       const double surfels_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surfels_start).count();
       const double one_pixel = median(one_pixel_splat_ms);

@@ -369,6 +369,11 @@ void Viewer::openCloud(std::shared_ptr<const lod::Octree> octree, std::string te
   });
   render::RendererOptions renderer_options;
   renderer_options.gpu_timing = options_.profile;
+  // The surfels of streamed nodes too: the frame uploads a node once they are estimated.
+  renderer_options.background = [this](std::function<void()> work) {
+    jobs_.submit(jobs::Priority::streaming, "estimate surfels",
+                 [work = std::move(work)](const jobs::CancelToken&) { work(); });
+  };
   cloud->renderer = std::make_unique<render::PointRenderer>(device_, allocator_, *cloud->cache, renderer_options);
   try {
     cloud->framing = lod::framingBox(*cloud->octree);

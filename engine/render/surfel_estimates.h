@@ -1,0 +1,52 @@
+#pragma once
+// The surfels of the nodes a streaming frame uploads, estimated off the frame (surfels.h: a few
+// milliseconds a node of 20,000 points, too long to hold a frame for): a frame asks for a node's,
+// starts their estimate the first time and uploads the node once they are ready.
+
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "engine/lod/cell_key.h"
+#include "engine/render/surfels.h"
+
+namespace plumb::lod {
+struct NodePoints;
+}
+
+namespace plumb::render {
+
+class SurfelEstimates {
+ public:
+  // Runs a piece of work in the background (the viewer's job system); empty: a task group of
+  // the estimates' own.
+  using BackgroundRunner = std::function<void(std::function<void()> work)>;
+
+  explicit SurfelEstimates(BackgroundRunner runner);
+  // Waits for the estimates under way.
+  ~SurfelEstimates();
+  SurfelEstimates(const SurfelEstimates&) = delete;
+  SurfelEstimates& operator=(const SurfelEstimates&) = delete;
+
+  // The surfels of `points` (a node `cell_size` wide) once estimated; else null, their estimate
+  // started unless it is under way.
+  std::shared_ptr<const std::vector<Surfel>> find(const std::shared_ptr<const lod::NodePoints>& points,
+                                                  double cell_size);
+  // Forgets a node's surfels (uploaded with its points).
+  void forget(const lod::CellKey& key);
+
+ private:
+  struct State;
+  std::shared_ptr<State> state_;  // shared with the estimates under way
+  BackgroundRunner runner_;
+};
+
+// The surfels of a node `cell_size` wide, as the renderer estimates them.
+std::vector<Surfel> nodeSurfels(const lod::NodePoints& points, double cell_size);
+
+}  // namespace plumb::render
