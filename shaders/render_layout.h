@@ -51,6 +51,9 @@ struct SplatChunk {
   // half_cell_m (the node's half size) in node coordinates.
   float octant_scale[8];
   float half_cell_m;
+  // 0: no disc of the chunk reaches a pixel's radius (its node lies too far): each point its
+  // pixel, without the discs' work.
+  uint discs;
   float clip_offset[3];  // the node origin less the clip region's anchor (ClipPlanes)
 };
 

@@ -170,8 +170,9 @@ void main() {
   const uint first_id = chunk_index << kChunkBits;
   const bool clipped = push.clip != 0;
   const vec3 clip_offset = vec3(chunk.clip_offset[0], chunk.clip_offset[1], chunk.clip_offset[2]);
-  if (push.shape == kSplatPoint) {
-    // Every point one pixel (the benchmark's measure of the bare splat): without the discs' loop.
+  if (push.shape == kSplatPoint || chunk.discs == 0u) {
+    // Every point one pixel (the benchmark's measure of the bare splat, and the chunks of nodes
+    // too far for a disc to reach a pixel's radius): without the discs' loop.
     for (uint i = gl_LocalInvocationID.x; i < chunk.point_count; i += kSplatGroupSize) {
       uvec2 pixel;
       uint64_t value;

@@ -1,5 +1,6 @@
 #include "engine/render/gpu_node_cache.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cstring>
 #include <memory>
@@ -51,6 +52,7 @@ const GpuNode* GpuNodeCache::upload(const lod::NodePoints& points, std::span<con
                   gpu::kDeviceMemory, name.c_str());
   node.point_count = static_cast<std::uint32_t>(points.points.size());
   node.surfels_offset = surfels_offset;
+  for (const Surfel& surfel : surfels) node.max_radius_m = std::max(node.max_radius_m, surfel.radius_m);
   node.octant_points = countOctants(points.points, static_cast<float>(0.5 * cell_size));
   node.scans_offset = points.scans.empty() ? 0 : point_bytes;
   const VkBufferCopy copy{span->offset, 0, bytes};

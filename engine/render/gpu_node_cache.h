@@ -34,6 +34,7 @@ struct GpuNode {
   std::array<std::uint32_t, 8> octant_points{};  // splat_spacing.h's countOctants
   VkDeviceSize scans_offset = 0;                 // where the scan indices start in `points`; 0: none
   VkDeviceSize surfels_offset = 0;               // where the surfels (surfels.h) start in `points`
+  float max_radius_m = 0.0f;                     // of its surfels
   std::uint64_t last_frame = 0;                  // the last frame that drew it
   gpu::Buffer labels;                            // uint32 per point (segment colours), when uploaded
   std::uint64_t labels_version = 0;

@@ -53,7 +53,7 @@ constexpr std::uint32_t kResolveCode[] =
 #include "shaders/resolve.comp.inc"
     ;
 
-static_assert(sizeof(shader::SplatChunk) == 168, "SplatChunk differs from its std430 layout");
+static_assert(sizeof(shader::SplatChunk) == 176, "SplatChunk differs from its std430 layout");
 static_assert(sizeof(shader::SplatPush) == 56, "SplatPush differs from its std430 layout");
 static_assert(sizeof(shader::ResolvePush) == 72, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
@@ -429,9 +429,26 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   for (const Drawn& d : drawn) drawn_nodes.push_back({d.info->key, d.node->point_count, d.node->octant_points});
   const std::vector<std::array<float, 8>> scales = octantRadiusScales(drawn_nodes);
   std::size_t c = 0;
+  // Whether a node's discs may reach a pixel's radius (the shader's kMinDiscPx): its largest
+  // at its cell's nearest corner (the view depth is linear, least at a corner).
+  const double pixels_per_metre = 1.0 / view::metresPerPixel(camera, 1.0);
+  const Eigen::Vector3d forward = view::viewDirection(camera);
+  const auto castsDiscs = [&](const Drawn& d, float max_scale) {
+    const lod::Box3 cell = octree.cube().cellBox(d.info->key);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d p(cell.min[0] + (corner & 1 ? cell.max[0] - cell.min[0] : 0.0),
+                              cell.min[1] + (corner & 2 ? cell.max[1] - cell.min[1] : 0.0),
+                              cell.min[2] + (corner & 4 ? cell.max[2] - cell.min[2] : 0.0));
+      nearest = std::min(nearest, forward.dot(p - camera.position));
+    }
+    if (camera.projection != view::Projection::kPerspective) nearest = 1.0;
+    return nearest <= camera.near_m || d.node->max_radius_m * max_scale * pixels_per_metre / nearest >= 1.0;
+  };
   for (std::size_t n = 0; n < drawn.size(); ++n) {
     const Drawn& d = drawn[n];
     const auto half_cell_m = static_cast<float>(0.5 * octree.cube().cellSize(d.info->key.level));
+    const std::uint32_t discs = castsDiscs(d, *std::max_element(scales[n].begin(), scales[n].end())) ? 1u : 0u;
     const std::array<double, 3> origin = octree.cube().cellMin(d.info->key);
     const SplatTransform transform = splatTransform(camera, origin);
     for (std::uint32_t first = 0; first < d.node->point_count; first += shader::kChunkPoints) {
@@ -448,6 +465,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
       chunk.surfels = d.node->points.address() + d.node->surfels_offset + VkDeviceAddress{first} * sizeof(Surfel);
       std::copy(scales[n].begin(), scales[n].end(), chunk.octant_scale);
       chunk.half_cell_m = half_cell_m;
+      chunk.discs = discs;
       for (std::size_t a = 0; a < 3; ++a) {
         chunk.clip_offset[a] = static_cast<float>(origin[a] - clip_anchor[static_cast<Eigen::Index>(a)]);
       }
