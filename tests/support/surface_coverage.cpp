@@ -2,12 +2,14 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <utility>
 
 #include "engine/view/camera.h"
 #include "reco/grid_index.h"
@@ -15,35 +17,62 @@
 
 namespace plumb::test {
 
-std::vector<float> localSpacings(std::span<const LabelledPoint> points, double max_spacing_m) {
+namespace {
+
+// Calls visit(i, neighbours) for each point with the indices of its (at most) `k` nearest other
+// points within `max_distance_m`, nearest first.
+template <typename Visit>
+void forEachNeighbourhood(std::span<const LabelledPoint> points, double max_distance_m, std::size_t k, Visit&& visit) {
   std::vector<Eigen::Vector3d> positions(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) positions[i] = points[i].position;
   const Eigen::Vector3d origin = positions.empty() ? Eigen::Vector3d::Zero() : positions.front();
-  const reco::PointGrid grid(origin, max_spacing_m);
+  const reco::PointGrid grid(origin, max_distance_m);
   const reco::GridIndex index(grid, positions);
-  std::vector<float> spacings(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::pair<double, std::uint32_t>> nearest;  // (squared distance, index), ascending
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      // The four smallest squared distances, ascending.
-      constexpr std::size_t kNeighbours = 4;
-      std::array<double, kNeighbours> nearest;
-      nearest.fill(max_spacing_m * max_spacing_m);
+      nearest.clear();
       const Eigen::Vector3d& p = positions[i];
+      const auto worst = [&] { return nearest.size() < k ? max_distance_m * max_distance_m : nearest.back().first; };
       grid.forEachAround(p, [&](const reco::GridKey& key) {
-        if (grid.squaredDistanceToCell(p, key) >= nearest.back()) return;
+        if (grid.squaredDistanceToCell(p, key) >= worst()) return;
         for (const std::uint32_t j : index.at(key)) {
           if (j == i) continue;
           const double d = (positions[j] - p).squaredNorm();
-          if (d >= nearest.back()) continue;
-          std::size_t k = kNeighbours - 1;
-          for (; k > 0 && nearest[k - 1] > d; --k) nearest[k] = nearest[k - 1];
-          nearest[k] = d;
+          if (d >= worst()) continue;
+          nearest.insert(std::upper_bound(nearest.begin(), nearest.end(), std::make_pair(d, j)), {d, j});
+          if (nearest.size() > k) nearest.pop_back();
         }
       });
-      spacings[i] = static_cast<float>(std::sqrt(nearest.back()));
+      visit(i, std::span<const std::pair<double, std::uint32_t>>(nearest));
     }
   });
+}
+
+}  // namespace
+
+std::vector<float> localSpacings(std::span<const LabelledPoint> points, double max_spacing_m) {
+  std::vector<float> spacings(points.size());
+  forEachNeighbourhood(points, max_spacing_m, 4, [&](std::size_t i, auto nearest) {
+    spacings[i] = static_cast<float>(nearest.size() < 4 ? max_spacing_m : std::sqrt(nearest.back().first));
+  });
   return spacings;
+}
+
+std::vector<Eigen::Vector3d> localNormals(std::span<const LabelledPoint> points, double max_spacing_m) {
+  std::vector<Eigen::Vector3d> normals(points.size(), Eigen::Vector3d::UnitZ());
+  forEachNeighbourhood(points, max_spacing_m, 12, [&](std::size_t i, auto nearest) {
+    if (nearest.size() < 3) return;
+    Eigen::Vector3d mean = points[i].position;
+    for (const auto& [d, j] : nearest) mean += points[j].position;
+    mean /= static_cast<double>(nearest.size() + 1);
+    Eigen::Matrix3d covariance = (points[i].position - mean) * (points[i].position - mean).transpose();
+    for (const auto& [d, j] : nearest)
+      covariance += (points[j].position - mean) * (points[j].position - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    normals[i] = solver.eigenvectors().col(0).normalized();
+  });
+  return normals;
 }
 
 ReferenceImage renderReference(std::span<const LabelledPoint> points, std::span<const float> spacings,
@@ -67,6 +96,14 @@ ReferenceImage renderReference(std::span<const LabelledPoint> points, std::span<
   };
   const double pixels_per_metre = 1.0 / view::metresPerPixel(camera, 1.0);
   const bool perspective = camera.projection == view::Projection::kPerspective;
+  // The ray through a pixel's centre, from the near plane to the far one: both ends are affine
+  // in the pixel's column and row, under either projection.
+  const auto rayEnd = [&](double column, double row, double ndc_z) {
+    return unproject(2.0 * (column + 0.5) / image.width - 1.0, 1.0 - 2.0 * (row + 0.5) / image.height, ndc_z);
+  };
+  const Eigen::Vector3d from0 = rayEnd(0, 0, -1.0), from_dx = rayEnd(1, 0, -1.0) - from0,
+                        from_dy = rayEnd(0, 1, -1.0) - from0;
+  const Eigen::Vector3d to0 = rayEnd(0, 0, 1.0), to_dx = rayEnd(1, 0, 1.0) - to0, to_dy = rayEnd(0, 1, 1.0) - to0;
 
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3d p = points[i].position - camera.position;
@@ -83,16 +120,14 @@ ReferenceImage renderReference(std::span<const LabelledPoint> points, std::span<
     const int low_y = std::max(0, static_cast<int>(std::floor(y - extent)));
     const int high_y = std::min(image.height - 1, static_cast<int>(std::floor(y + extent)));
     const auto own_x = static_cast<int>(std::floor(x)), own_y = static_cast<int>(std::floor(y));
-    const Eigen::Vector3d& n = normals[points[i].surface];
+    const Eigen::Vector3d& n = normals[i];
     for (int row = low_y; row <= high_y; ++row) {
       for (int column = low_x; column <= high_x; ++column) {
-        const double ndc_x = 2.0 * (column + 0.5) / image.width - 1.0;
-        const double ndc_y = 1.0 - 2.0 * (row + 0.5) / image.height;
         double pixel_depth = eye_depth;
         if (column != own_x || row != own_y) {
           // The ray through the pixel's centre, to the disc's plane.
-          const Eigen::Vector3d from = unproject(ndc_x, ndc_y, -1.0);
-          const Eigen::Vector3d direction = unproject(ndc_x, ndc_y, 1.0) - from;
+          const Eigen::Vector3d from = from0 + column * from_dx + row * from_dy;
+          const Eigen::Vector3d direction = to0 + column * to_dx + row * to_dy - from;
           const double facing = n.dot(direction);
           if (std::abs(facing) < 1e-12) continue;
           const Eigen::Vector3d hit = from + n.dot(p - from) / facing * direction;

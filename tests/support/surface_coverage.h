@@ -36,8 +36,13 @@ struct ReferenceImage {
 // `max_spacing_m` (a point with fewer neighbours as near stands alone and gets that).
 std::vector<float> localSpacings(std::span<const LabelledPoint> points, double max_spacing_m);
 
-// The reference image of `points` (with their `spacings`, and the unit normal of each surface
-// label in `normals`) through `camera` (a valid one).
+// Each point's unit normal where no truth gives it (a real scan): the least principal axis of
+// the point and its 12 nearest within `max_spacing_m` (the view direction's axis, z, for a point
+// with fewer than 3 neighbours there).
+std::vector<Eigen::Vector3d> localNormals(std::span<const LabelledPoint> points, double max_spacing_m);
+
+// The reference image of `points` (with their `spacings` and unit `normals`, one each) through
+// `camera` (a valid one).
 ReferenceImage renderReference(std::span<const LabelledPoint> points, std::span<const float> spacings,
                                std::span<const Eigen::Vector3d> normals, const view::Camera& camera);
 

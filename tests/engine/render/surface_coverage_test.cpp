@@ -37,6 +37,7 @@
 #include "engine/view/view_presets.h"
 #include "reco/sim/simulation.h"
 #include "tests/support/gpu_test.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/simulated_truth.h"
 #include "tests/support/temp_directory.h"
 
@@ -67,6 +68,15 @@ struct NamedView {
   view::Camera camera;
 };
 
+// A cloud as an octree, and the reference's view of it: every point with its surface, spacing
+// and normal.
+struct ReferenceScene {
+  std::shared_ptr<const lod::Octree> octree;
+  std::vector<test::LabelledPoint> points;
+  std::vector<float> spacings;
+  std::vector<Eigen::Vector3d> normals;
+};
+
 class SurfaceCoverageTest : public test::GpuTest {
  protected:
   static void SetUpTestSuite() {
@@ -84,30 +94,30 @@ class SurfaceCoverageTest : public test::GpuTest {
     build.sources = lod::fileSources({request.points_path});
     build.output = directory_->file("office.plumb");
     lod::buildOctree(build);
-    octree_ = lod::Octree::open(build.output);
+    office_.octree = lod::Octree::open(build.output);
 
+    // The simulator's labels: each point's true plane, whose normal is the point's.
     const std::vector<reco::PlaneRegression> planes = test::fitTruePlanes(
         request.points_path, report.planes, kOffset, [](const Eigen::Vector3d& p, std::uint32_t plane) {
-          points_.push_back({p, plane});
+          office_.points.push_back({p, plane});
         });
-    for (const reco::PlaneRegression& plane : planes) {
-      const reco::Plane fit = plane.fit();
-      normals_.push_back(fit.valid ? fit.normal : Eigen::Vector3d::UnitZ());
+    for (const test::LabelledPoint& point : office_.points) {
+      const reco::Plane fit = planes[point.surface].fit();
+      office_.normals.push_back(fit.valid ? fit.normal : Eigen::Vector3d::UnitZ());
     }
-    spacings_ = test::localSpacings(points_, 0.1);
+    office_.spacings = test::localSpacings(office_.points, 0.1);
   }
   static void TearDownTestSuite() {
-    octree_.reset();
-    points_ = {};
-    spacings_ = {};
-    normals_ = {};
+    office_ = {};
     directory_.reset();
   }
 
-  // The coverage of the renderer's picture through `view` under `budget`, printed; the picture
-  // kept for inspection with PLUMB_TEST_IMAGES=DIR.
-  test::SurfaceCoverage measure(const NamedView& view, std::uint64_t budget, SplatShape shape) {
-    lod::NodeCache nodes(octree_, std::uint64_t{512} << 20);
+  // The coverage of the renderer's picture through `view` under `budget`, against `reference`
+  // (of the scene through the view), printed; the picture kept for inspection with
+  // PLUMB_TEST_IMAGES=DIR.
+  test::SurfaceCoverage measure(const ReferenceScene& scene, const test::ReferenceImage& reference,
+                                const NamedView& view, std::uint64_t budget, SplatShape shape) {
+    lod::NodeCache nodes(scene.octree, std::uint64_t{512} << 20);
     PointRenderer renderer(*device_, *allocator_, nodes);
     RenderSettings settings;
     settings.background = kMagenta;
@@ -123,7 +133,6 @@ class SurfaceCoverageTest : public test::GpuTest {
       }
     }
 
-    const test::ReferenceImage reference = test::renderReference(points_, spacings_, normals_, view.camera);
     std::vector<test::PixelClass> classes;
     const test::SurfaceCoverage coverage = test::measureCoverage(reference, covered, kMarginPx, kMinPixels, &classes);
     std::printf(
@@ -161,22 +170,23 @@ class SurfaceCoverageTest : public test::GpuTest {
 
   // Surfels (the renderer's default) at both budgets, held to the targets; squares and single
   // pixels, printed for the comparison (docs/rendering.md).
-  void expectClosed(const NamedView& view) {
+  // max_background: the target, or a known shortfall that may not grow.
+  void expectClosed(const NamedView& view, const ReferenceScene& scene = office_,
+                    double max_background = kMaxBackground) {
+    const test::ReferenceImage reference =
+        test::renderReference(scene.points, scene.spacings, scene.normals, view.camera);
     for (const std::uint64_t budget : {std::uint64_t{2'000'000}, std::uint64_t{250'000}}) {
-      const test::SurfaceCoverage coverage = measure(view, budget, SplatShape::kSurfel);
+      const test::SurfaceCoverage coverage = measure(scene, reference, view, budget, SplatShape::kSurfel);
       EXPECT_GT(coverage.surfaces_measured, 0u) << view.name;
-      EXPECT_LE(coverage.worst_background, kMaxBackground)
+      EXPECT_LE(coverage.worst_background, max_background)
           << view.name << " at budget " << budget << ": surface " << coverage.worst_surface;
     }
-    measure(view, 2'000'000, SplatShape::kSquare);
-    measure(view, 2'000'000, SplatShape::kPoint);
+    measure(scene, reference, view, 2'000'000, SplatShape::kSquare);
+    measure(scene, reference, view, 2'000'000, SplatShape::kPoint);
   }
 
   static inline std::unique_ptr<test::TempDirectory> directory_;
-  static inline std::shared_ptr<const lod::Octree> octree_;
-  static inline std::vector<test::LabelledPoint> points_;
-  static inline std::vector<float> spacings_;
-  static inline std::vector<Eigen::Vector3d> normals_;  // per true plane
+  static inline ReferenceScene office_;
 };
 
 // The headless demo's first view: along the corridor, its near left wall a metre away.
@@ -197,9 +207,40 @@ TEST_F(SurfaceCoverageTest, AFloorAtAGrazingAngleIsClosed) {
 }
 
 TEST_F(SurfaceCoverageTest, TheWholeBuildingIsClosed) {
-  const lod::Box3 bounds = octree_->header().bounds;
+  const lod::Box3 bounds = office_.octree->header().bounds;
   expectClosed({"iso", view::presetCamera(view::ViewPreset::kIso, Eigen::Vector3d(bounds.min.data()),
                                           Eigen::Vector3d(bounds.max.data()), kWidth, kHeight)});
+}
+
+// A real interior scan, PCL's room (112,586 points, 10 to 20 cm apart on its far wall), the wall
+// from 2 m. No truth: the reference takes each point's normal from its 12 nearest, and the scan
+// is one surface. A known shortfall: 5.75 % of it shows background (99.97 % before the surfels),
+// where the target is 1 %: the octants' density scales assume their points spread evenly, and a
+// sparse scan's are not; the test fails if it gets worse.
+TEST_F(SurfaceCoverageTest, ARealRoomScanFromTwoMetresIsClosed) {
+  PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
+  lod::BuildOptions build;
+  build.sources = lod::fileSources({path});
+  build.output = directory_->file("room.plumb");
+  lod::buildOctree(build);
+  ReferenceScene room;
+  room.octree = lod::Octree::open(build.output);
+  lod::NodeCache nodes(room.octree, std::uint64_t{256} << 20);
+  for (const lod::NodeInfo& info : room.octree->nodes()) {
+    const std::shared_ptr<const lod::NodePoints> points = nodes.get(info.key);
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const std::array<double, 3> p = points->position(i);
+      room.points.push_back({Eigen::Vector3d(p[0], p[1], p[2]), 0});
+    }
+  }
+  room.spacings = test::localSpacings(room.points, 0.5);
+  room.normals = test::localNormals(room.points, 0.5);
+  view::Camera camera;
+  camera.position = {6.1, 0.0, 0.2};
+  camera.target = {8.1, 0.0, 0.0};
+  camera.viewport_width_px = kWidth;
+  camera.viewport_height_px = kHeight;
+  expectClosed({"room_2m", camera}, room, 0.06);
 }
 
 }  // namespace
