@@ -5,11 +5,14 @@
 // steps between splats for eye-dome lighting to outline, no square reaching past an edge seen
 // at a grazing angle.
 //
-// Per point of a node, from its nearest neighbours among the node's points: the normal (the
-// least principal axis of the point and its 12 nearest; none where they lie along a line) and the spacing (the distance
-// to the 4th nearest, the radius of a disc that closes the surface wherever the scan's pattern leaves gaps: as the
-// reference image of tests/support/surface_coverage.h). The renderer computes them once per node, when it uploads the
-// node's points.
+// Per point of a node, from its nearest neighbours among the node's points:
+//   - the spacing: the distance to its 4th nearest, the radius of a disc that closes the
+//     surface wherever the scan's pattern leaves gaps (as the reference image of
+//     tests/support/surface_coverage.h draws it);
+//   - the normal: the least principal axis of the point and its 12 nearest, of its 40 nearest
+//     where the 12 lie along one of the scanner's lines; none (the disc faces the eye, at half
+//     the radius) where even those span no one plane.
+// The renderer estimates them once per node, before it uploads the node (surfel_estimates.h).
 
 #include <cstdint>
 #include <span>
