@@ -135,10 +135,11 @@ bool surfelOf(const uint i, const SplatChunk chunk, const mat4 clip_from_node, c
   const vec3 normal = packed == kSurfelFacingTheEye ? depth_row.xyz : decodeNormal(packed);
   const vec3 t1 = normalize(cross(normal, abs(normal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
   const vec3 t2 = cross(normal, t1);
-  // A disc reaching to the near plane would not be an ellipse on screen: its pixel alone.
-  if (!(depth - radius_m > push.near_m)) return false;
+  // A disc reaching to the near plane would not be an ellipse on screen: near the eye, discs
+  // shrink to stay in front of it (a point there covers much of the screen still).
+  const float disc_radius_m = min(radius_m, 0.9 * (depth - push.near_m));
   // Pixels (times w) from the disc's (u, v, 1): the clip transform's x, y and w rows.
-  const vec4 eu = clip_from_node * vec4(radius_m * t1, 0.0), ev = clip_from_node * vec4(radius_m * t2, 0.0);
+  const vec4 eu = clip_from_node * vec4(disc_radius_m * t1, 0.0), ev = clip_from_node * vec4(disc_radius_m * t2, 0.0);
   const mat3 pixel_from_plane = mat3(eu.xyw, ev.xyw, c0.xyw);
   // The rows between the ellipse's horizontal tangents: lines (0, 1, -y) of its dual conic
   // pixel_from_plane * diag(1, 1, -1) * transpose(pixel_from_plane).
@@ -152,7 +153,7 @@ bool surfelOf(const uint i, const SplatChunk chunk, const mat4 clip_from_node, c
   const vec2 extent = vec2((dyw + root) / dww, (dyw - root) / dww);
   // Clamped as floats: a disc beside the eye projects far off screen.
   const vec2 rows = clamp(vec2(floor(min(extent.x, extent.y)), floor(max(extent.x, extent.y)) + 1.0), 0.0, float(size.y));
-  disc = Disc(inverse(pixel_from_plane), depth, radius_m * vec2(dot(depth_row.xyz, t1), dot(depth_row.xyz, t2)), id,
+  disc = Disc(inverse(pixel_from_plane), depth, disc_radius_m * vec2(dot(depth_row.xyz, t1), dot(depth_row.xyz, t2)), id,
               ivec2(rows));
   return disc.rows.y > disc.rows.x;
 }
