@@ -30,11 +30,13 @@ layout(push_constant) uniform Push { SplatPush push; };
 // one-pixel holes left between such points, and most points of a frame are such.
 const float kMinDiscPx = 1.0;
 
-// A point's disc on screen, cast exactly: the homography from pixels to the disc's plane
-// (plane_from_pixel * (x, y, 1) = (u, v, 1) * w, the disc where u^2 + v^2 <= 1) and the plane's
-// depth, linear in (u, v).
+// A point's disc on screen, cast exactly: the homography from pixel offsets from its centre to
+// the disc's plane (plane_from_offset * (dx, dy, 1) = (u, v, 1) * w, the disc where
+// u^2 + v^2 <= 1) and the plane's depth, linear in (u, v). Offsets from the centre, not pixel
+// coordinates, keep the quadratics below well inside float precision.
 struct Disc {
-  mat3 plane_from_pixel;
+  vec2 centre;  // pixels
+  mat3 plane_from_offset;
   float depth;       // at the disc's centre
   vec2 depth_slope;  // per unit of u and v
   uint id;
@@ -44,25 +46,25 @@ struct Disc {
 // Casts the disc: per row, the span of pixels whose centres lie inside it (where
 // u'^2 + v'^2 - w'^2 <= 0, a quadratic along the row), each at the plane's depth.
 void castDisc(const Disc d, const Visibility visibility, const uint width) {
-  // Rows of the homography: u', v', w' as dot products with (x, y, 1).
-  const vec3 gu = vec3(d.plane_from_pixel[0][0], d.plane_from_pixel[1][0], d.plane_from_pixel[2][0]);
-  const vec3 gv = vec3(d.plane_from_pixel[0][1], d.plane_from_pixel[1][1], d.plane_from_pixel[2][1]);
-  const vec3 gw = vec3(d.plane_from_pixel[0][2], d.plane_from_pixel[1][2], d.plane_from_pixel[2][2]);
+  // Rows of the homography: u', v', w' as dot products with (dx, dy, 1).
+  const vec3 gu = vec3(d.plane_from_offset[0][0], d.plane_from_offset[1][0], d.plane_from_offset[2][0]);
+  const vec3 gv = vec3(d.plane_from_offset[0][1], d.plane_from_offset[1][1], d.plane_from_offset[2][1]);
+  const vec3 gw = vec3(d.plane_from_offset[0][2], d.plane_from_offset[1][2], d.plane_from_offset[2][2]);
   const float a = gu.x * gu.x + gv.x * gv.x - gw.x * gw.x;
   if (!(a > 0.0)) return;  // not an ellipse on screen
   for (int y = d.rows.x; y < d.rows.y; ++y) {
-    const float yc = float(y) + 0.5;
-    const float bu = gu.y * yc + gu.z, bv = gv.y * yc + gv.z, bw = gw.y * yc + gw.z;
+    const float dy = float(y) + 0.5 - d.centre.y;
+    const float bu = gu.y * dy + gu.z, bv = gv.y * dy + gv.z, bw = gw.y * dy + gw.z;
     const float b = gu.x * bu + gv.x * bv - gw.x * bw;  // half the linear coefficient
     const float c = bu * bu + bv * bv - bw * bw;
     const float discriminant = b * b - a * c;
     if (!(discriminant >= 0.0)) continue;
     const float root = sqrt(discriminant);
-    // Pixel centres x + 0.5 between the roots.
-    const float low = clamp(ceil((-b - root) / a - 0.5), 0.0, float(width));
-    const float high = clamp(floor((-b + root) / a - 0.5) + 1.0, 0.0, float(width));
+    // Pixel centres x + 0.5 at offsets between the roots.
+    const float low = clamp(ceil(d.centre.x + (-b - root) / a - 0.5), 0.0, float(width));
+    const float high = clamp(floor(d.centre.x + (-b + root) / a - 0.5) + 1.0, 0.0, float(width));
     for (int x = int(low); x < int(high); ++x) {
-      const vec3 uvw = d.plane_from_pixel * vec3(float(x) + 0.5, yc, 1.0);
+      const vec3 uvw = d.plane_from_offset * vec3(float(x) + 0.5 - d.centre.x, dy, 1.0);
       const float pixel_depth = d.depth + dot(d.depth_slope, uvw.xy / uvw.z);
       atomicMin(visibility.pixel[uint(y) * width + uint(x)], (uint64_t(floatBitsToUint(pixel_depth)) << 32) | uint64_t(d.id));
     }
@@ -138,23 +140,26 @@ bool surfelOf(const uint i, const SplatChunk chunk, const mat4 clip_from_node, c
   // A disc reaching to the near plane would not be an ellipse on screen: near the eye, discs
   // shrink to stay in front of it (a point there covers much of the screen still).
   const float disc_radius_m = min(radius_m, 0.9 * (depth - push.near_m));
-  // Pixels (times w) from the disc's (u, v, 1): the clip transform's x, y and w rows.
+  // Pixel offsets from the centre (times w) from the disc's (u, v, 1): the clip transform's x,
+  // y and w rows less the centre's share, over the centre's w (which keeps the conic).
   const vec4 eu = clip_from_node * vec4(disc_radius_m * t1, 0.0), ev = clip_from_node * vec4(disc_radius_m * t2, 0.0);
-  const mat3 pixel_from_plane = mat3(eu.xyw, ev.xyw, c0.xyw);
-  // The rows between the ellipse's horizontal tangents: lines (0, 1, -y) of its dual conic
-  // pixel_from_plane * diag(1, 1, -1) * transpose(pixel_from_plane).
-  const vec3 hy = vec3(eu.y, ev.y, c0.y), hw = vec3(eu.w, ev.w, c0.w);
-  const float dyy = hy.x * hy.x + hy.y * hy.y - hy.z * hy.z;
-  const float dyw = hy.x * hw.x + hy.y * hw.y - hy.z * hw.z;
-  const float dww = hw.x * hw.x + hw.y * hw.y - hw.z * hw.z;
+  const vec3 hx = vec3(eu.x - centre.x * eu.w, ev.x - centre.x * ev.w, 0.0) / c0.w;
+  const vec3 hy = vec3(eu.y - centre.y * eu.w, ev.y - centre.y * ev.w, 0.0) / c0.w;
+  const vec3 hw = vec3(eu.w, ev.w, c0.w) / c0.w;
+  const mat3 offset_from_plane = transpose(mat3(hx, hy, hw));
+  // The rows between the ellipse's horizontal tangents: lines (0, 1, -dy) of its dual conic
+  // offset_from_plane * diag(1, 1, -1) * transpose(offset_from_plane).
+  const float dyy = hy.x * hy.x + hy.y * hy.y;
+  const float dyw = hy.x * hw.x + hy.y * hw.y;
+  const float dww = hw.x * hw.x + hw.y * hw.y - 1.0;
   const float tangents = dyw * dyw - dyy * dww;
   if (!(dww < 0.0) || !(tangents >= 0.0)) return false;  // no ellipse (edge-on or at the eye)
   const float root = sqrt(tangents);
-  const vec2 extent = vec2((dyw + root) / dww, (dyw - root) / dww);
+  const vec2 extent = centre.y + vec2((dyw + root) / dww, (dyw - root) / dww);
   // Clamped as floats: a disc beside the eye projects far off screen.
   const vec2 rows = clamp(vec2(floor(min(extent.x, extent.y)), floor(max(extent.x, extent.y)) + 1.0), 0.0, float(size.y));
-  disc = Disc(inverse(pixel_from_plane), depth, disc_radius_m * vec2(dot(depth_row.xyz, t1), dot(depth_row.xyz, t2)), id,
-              ivec2(rows));
+  disc = Disc(centre, inverse(offset_from_plane), depth,
+              disc_radius_m * vec2(dot(depth_row.xyz, t1), dot(depth_row.xyz, t2)), id, ivec2(rows));
   return disc.rows.y > disc.rows.x;
 }
 
