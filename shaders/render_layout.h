@@ -83,8 +83,8 @@ const uint kSplatSurfel = 2u;
 const uint kSurfelWords = 2;
 const uint kSurfelFacingTheEye = 0x80008000u;
 
-// The largest half-extent of a point's disc on screen, in pixels: a disc nearer the eye than
-// that is drawn this size (the cost of a disc grows with its area on screen).
+// The largest half-side of a point's square (kSplatSquare) on screen, in pixels: a square nearer
+// the eye is drawn this size (its cost grows with its area). Discs are cast whole.
 const uint kMaxSplatHalfPx = 512u;
 
 struct SplatPush {
@@ -96,7 +96,7 @@ struct SplatPush {
   float near_m;  // points nearer than this to the eye are clipped
   uint64_t clip;  // ClipPlanes; 0: every point kept
   // A length of 1 m at view depth d spans pixels_per_metre / d pixels (perspective), or
-  // pixels_per_metre at any depth (orthographic): the scale of kSplatSquare's squares.
+  // pixels_per_metre at any depth (orthographic): a point's radius on screen.
   float pixels_per_metre;
   uint perspective;
   uint shape;  // kSplatPoint, kSplatSquare or kSplatSurfel

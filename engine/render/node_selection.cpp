@@ -49,14 +49,8 @@ bool outside(const std::array<Eigen::Vector4d, 6>& planes, const lod::Box3& box)
 // Pixels per metre at a distance: the scale from world lengths to the screen.
 class ScreenScale {
  public:
-  explicit ScreenScale(const view::Camera& camera) : camera_(camera) {
-    const double height = camera.viewport_height_px;
-    if (camera.projection == view::Projection::kPerspective) {
-      pixels_per_radian_ = height / (2.0 * std::tan(camera.fov_deg * M_PI / 360.0));
-    } else {
-      pixels_per_metre_ = height / camera.ortho_height_m;
-    }
-  }
+  explicit ScreenScale(const view::Camera& camera)
+      : camera_(camera), pixels_per_metre_(1.0 / view::metresPerPixel(camera, 1.0)) {}
   double pixelsPerMetre(const lod::Box3& box) const {
     if (camera_.projection == view::Projection::kOrthographic) return pixels_per_metre_;
     double squared = 0.0;  // from the eye to the nearest point of the box
@@ -65,12 +59,12 @@ class ScreenScale {
       const double d = std::max({box.min[a] - eye, 0.0, eye - box.max[a]});
       squared += d * d;
     }
-    return pixels_per_radian_ / std::max(std::sqrt(squared), camera_.near_m);
+    return pixels_per_metre_ / std::max(std::sqrt(squared), camera_.near_m);
   }
 
  private:
   const view::Camera& camera_;
-  double pixels_per_radian_ = 0.0, pixels_per_metre_ = 0.0;
+  double pixels_per_metre_;  // at 1 m in front of the eye (orthographic: at any depth)
 };
 
 }  // namespace

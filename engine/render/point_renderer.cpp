@@ -218,13 +218,12 @@ struct PointRenderer::Resources {
     target = std::make_unique<RenderTarget>(device, allocator, width, height);
   }
 
-  // At least `bytes` of host memory in `buffer`, made anew (twice as big) when it has less; the
-  // slot's last frame is done (paced), so its old one may go now.
-  void ensureHostBuffer(gpu::Buffer& buffer, VkDeviceSize bytes, const char* name) {
-    bytes = std::max<VkDeviceSize>(bytes, 1);
-    if (buffer && buffer.size() >= bytes) return;
-    buffer = gpu::Buffer(device, allocator, std::max<VkDeviceSize>(bytes, 2 * buffer.size()),
-                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, name);
+  void ensureChunkCapacity(Slot& slot, std::size_t chunks) {
+    const VkDeviceSize bytes = std::max<std::size_t>(chunks, 1) * sizeof(shader::SplatChunk);
+    if (slot.chunks && slot.chunks.size() >= bytes) return;
+    // The slot's last frame is done (paced): its table may go now.
+    slot.chunks = gpu::Buffer(device, allocator, std::max<VkDeviceSize>(bytes, 2 * slot.chunks.size()),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, "chunk table");
   }
 
   // The region's planes, relative to its anchor, into the slot's ClipPlanes; its address.
@@ -416,7 +415,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   // 3. The chunk table.
   std::size_t chunk_count = 0;
   for (const Drawn& d : drawn) chunk_count += (d.node->point_count + shader::kChunkPoints - 1) / shader::kChunkPoints;
-  r.ensureHostBuffer(slot.chunks, chunk_count * sizeof(shader::SplatChunk), "chunk table");
+  r.ensureChunkCapacity(slot, chunk_count);
   auto* chunks = static_cast<shader::SplatChunk*>(slot.chunks.mapped());
   r.last_chunks.clear();
   r.last_chunks.reserve(chunk_count);
@@ -491,7 +490,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                  count,
                                  static_cast<float>(camera.near_m),
                                  settings.clip.active() ? r.writeClip(slot, settings.clip) : 0,
-                                 static_cast<float>(1.0 / view::metresPerPixel(camera, 1.0)),
+                                 static_cast<float>(pixels_per_metre),
                                  camera.projection == view::Projection::kPerspective ? 1u : 0u,
                                  shaderSplatShape(settings.splat),
                                  0u};
