@@ -40,8 +40,8 @@ CellState& Grower::loaded(const CellKey& key) {
 // and at medium detail the cell keeps r.
 void Grower::indexCell(CellState& state) const {
   state.radius = radius_;
-  state.grid = grid_;
-  state.by_grid = GridIndex(grid_, state.points);
+  state.grid = PointGrid(parameters_.seed, radius_);
+  state.by_grid = GridIndex(state.grid, state.points);
   if (!radius_from_data_) return;
   const std::uint32_t per_cell = state.by_grid.medianCellPoints();
   if (per_cell == 0) return;

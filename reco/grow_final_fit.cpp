@@ -66,7 +66,7 @@ void Grower::rebuildAssigned() {
 // without looking (p's own segment, whose points fill the cells around it).
 std::uint32_t Grower::segmentsNear(const Eigen::Vector3d& p, std::uint32_t known) const {
   std::uint32_t mask = known;
-  grid_.forEachAround(p, [&](const GridKey& key) {
+  grid_.forEachNear(p, [&](const GridKey& key) {
     const AssignedCell* cell = assigned_.find(key);
     if (cell == nullptr || (cell->segments & ~mask) == 0) return;
     for (const Assigned& a : cell->points) {
@@ -86,7 +86,7 @@ std::uint32_t Grower::segmentsAround(const Eigen::Vector3d& p) const {
   sum.fill(Eigen::Vector3d::Zero());
   std::array<std::uint32_t, kMaxSegments> count{};
   std::uint32_t near = 0;
-  grid_.forEachAround(p, [&](const GridKey& key) {
+  grid_.forEachNear(p, [&](const GridKey& key) {
     const AssignedCell* cell = assigned_.find(key);
     if (cell == nullptr) return;
     for (const Assigned& a : cell->points) {

@@ -43,13 +43,16 @@ Candidate Grower::bestSegment(const Eigen::Vector3d& p, bool measure) {
   double best_distance = INFINITY;
   double nearest2 = INFINITY;
   std::uint32_t seen_mask = 0;
-  grid_.forEachAround(p, [&](const GridKey& key) {
+  grid_.forEachNear(p, [&](const GridKey& key) {
     const AssignedCell* cell = assigned_.find(key);
-    if (cell == nullptr) return;
+    if (cell == nullptr || grid_.squaredDistanceToCell(p, key) > radius_ * radius_) return;
     const bool unseen = (cell->segments & ~seen_mask) != 0;
     if (!unseen && (!measure || grid_.squaredDistanceToCell(p, key) >= nearest2)) return;
     for (const Assigned& a : cell->points) {
-      if (!measure && ((seen_mask >> a.segment) & 1u)) continue;
+      if (!measure && ((seen_mask >> a.segment) & 1u)) {
+        if ((cell->segments & ~seen_mask) == 0) break;  // each of the cell's segments seen
+        continue;
+      }
       const double d2 = (a.position - p).squaredNorm();
       if (d2 > radius_ * radius_) continue;
       nearest2 = std::min(nearest2, d2);
@@ -90,13 +93,14 @@ bool Grower::processCell(const CellKey& key) {
   std::vector<Assigned> queue = std::move(state.frontier);
   state.frontier.clear();
   bool added = false;
+  const double radius2 = state.radius * state.radius;
   for (std::size_t next = 0; next < queue.size(); ++next) {
     const Assigned from = queue[next];
     state.grid.forEachAround(from.position, [&](const GridKey& grid_key) {
       for (std::uint32_t i : state.by_grid.at(grid_key)) {
         if (state.assigned[i]) continue;
-        const double distance = (state.points[i] - from.position).norm();
-        if (distance > state.radius) continue;
+        const double distance2 = (state.points[i] - from.position).squaredNorm();
+        if (distance2 > radius2) continue;
         if (state.rejected_epoch[i] == plane_epoch_ && ((state.rejected_by[i] >> from.segment) & 1u)) {
           ++snapshot_.tests_skipped;
           continue;
@@ -115,7 +119,7 @@ bool Grower::processCell(const CellKey& key) {
         }
         assign(state, i, static_cast<std::uint32_t>(candidate.segment));
         queue.push_back({state.points[i], static_cast<std::uint32_t>(candidate.segment)});
-        neighbour_distance_sum_ += distance;
+        neighbour_distance_sum_ += std::sqrt(distance2);
         ++neighbour_distance_count_;
         if (measure) observeSpacing(candidate.nearest_m);
         added = true;
@@ -150,11 +154,12 @@ bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, 
   double own_sum = 0.0;
   std::uint32_t free_count = 0;
   std::uint32_t own_count = 0;
+  const double radius2 = state.radius * state.radius;
   state.grid.forEachAround(p, [&](const GridKey& key) {
     for (std::uint32_t j : state.by_grid.at(key)) {
       const std::uint8_t owner = state.assigned[j];
       if (owner != 0 && owner != segment + 1) continue;
-      if ((state.points[j] - p).squaredNorm() > state.radius * state.radius) continue;
+      if ((state.points[j] - p).squaredNorm() > radius2) continue;
       const double d = plane.signedDistance(state.points[j]);
       if (std::abs(d) >= window) continue;
       if (owner == 0) {

@@ -58,6 +58,22 @@ class PointGrid {
     }
   }
 
+  // Calls visit(key) for the 2 x 2 x 2 grid cells nearest p: p's own cell and, along each axis,
+  // the neighbour on the side of p's nearer face. They hold every point within half a step of p.
+  template <typename Visit>
+  void forEachNear(const Eigen::Vector3d& p, Visit&& visit) const {
+    const Eigen::Vector3d g = (p - origin_) * inverse_;
+    std::array<std::int64_t, 3> low{};
+    for (int a = 0; a < 3; ++a) {
+      const double cell = std::floor(g[a]);
+      low[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(cell) - (g[a] - cell < 0.5 ? 1 : 0);
+    }
+    for (std::int64_t dz = 0; dz <= 1; ++dz) {
+      for (std::int64_t dy = 0; dy <= 1; ++dy) {
+        for (std::int64_t dx = 0; dx <= 1; ++dx) visit(GridKey{low[0] + dx, low[1] + dy, low[2] + dz});
+      }
+    }
+  }
   // The corner of grid cell `key` with the smallest coordinates; the cell is one step wide.
   Eigen::Vector3d cellMin(const GridKey& key) const {
     return origin_ +

@@ -76,7 +76,7 @@ Grower::Grower(lod::NodeCache& cache, const GrowParameters& parameters, const Gr
       options_(options),
       progress_(progress),
       radius_(parameters.search_radius_m),
-      grid_(parameters.seed, parameters.search_radius_m),
+      grid_(parameters.seed, 2.0 * parameters.search_radius_m),
       claims_(octree_.cube()),
       membership_(octree_),
       start_(Clock::now()) {
@@ -132,7 +132,7 @@ void Grower::adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points,
   if (reach > radius_) {
     radius_from_data_ = true;
     radius_ = std::min(reach, 0.5 * parameters_.seed_radius_m);
-    grid_ = PointGrid(parameters_.seed, radius_);
+    grid_ = PointGrid(parameters_.seed, 2.0 * radius_);
   }
   snapshot_.search_radius_m = radius_;
 }
@@ -295,7 +295,8 @@ void Grower::seed() {
   point_levels_ = point_level - gather_level;
   claimSeedCells(gather_level, sphere);
   std::vector<Eigen::Vector3d>& points = sphere.points;
-  planes = from_sample ? pointsOnPlanes(points, planes, parameters_.plane_threshold_m) : findPlanes(points, seed_options);
+  planes =
+      from_sample ? pointsOnPlanes(points, planes, parameters_.plane_threshold_m) : findPlanes(points, seed_options);
   snapshot_.plane_threshold_m = parameters_.plane_threshold_m;
   adaptToDataSpacing(points, planes);
   gathering_seed_ = false;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -58,6 +59,36 @@ TEST(GridMap, KeepsEveryValueAcrossRehashes) {
   EXPECT_EQ(*map.find({1, 2, 3}), 5);
   map.clear();
   EXPECT_EQ(map.find({1, 2, 3}), nullptr);
+}
+
+// The 8 cells nearest a point hold every point within half a step of it, on both sides of the
+// origin and at the cells' faces, and are 8 distinct cells with p's own among them.
+TEST(PointGrid, TheEightNearestCellsHoldEveryPointWithinHalfAStep) {
+  Random random(5);
+  const Eigen::Vector3d origin(512000.0, 5403000.0, 250.0);
+  const double step = 0.1;
+  const PointGrid grid(origin, step);
+  std::size_t checked = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d p =
+        origin + Eigen::Vector3d(random.uniform() - 0.5, random.uniform() - 0.5, random.uniform() - 0.5);
+    std::vector<std::tuple<std::int64_t, std::int64_t, std::int64_t>> visited;
+    grid.forEachNear(p, [&](const GridKey& key) { visited.push_back(tupleOf(key)); });
+    std::sort(visited.begin(), visited.end());
+    ASSERT_EQ(std::unique(visited.begin(), visited.end()), visited.end());
+    ASSERT_EQ(visited.size(), 8u);
+    EXPECT_TRUE(std::binary_search(visited.begin(), visited.end(), tupleOf(grid.keyOf(p))));
+    for (int j = 0; j < 20; ++j) {
+      // A point at most half a step away, many of them right at that distance.
+      Eigen::Vector3d offset(random.gaussian(), random.gaussian(), random.gaussian());
+      offset *= (j % 2 == 0 ? 0.5 : 0.5 * random.uniform()) * step / offset.norm();
+      const Eigen::Vector3d q = p + offset * (1.0 - 1e-9);
+      EXPECT_TRUE(std::binary_search(visited.begin(), visited.end(), tupleOf(grid.keyOf(q))))
+          << "point " << i << ", neighbour " << j;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 40000u);
 }
 
 }  // namespace
