@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "reco/plane_regression.h"
@@ -52,6 +53,34 @@ TEST(PointSpacing, ArealSpacingOfAQuarterDisc) {
     }
   }
   EXPECT_NEAR(arealSpacing(fitted(points), points), 0.02, 0.002);
+}
+
+TEST(PointSpacing, ArealSpacingOfALargePatchFromItsOutermostPoints) {
+  // 120,000 points on a 3 mm grid in a 0.897 x 1.197 m rectangle turned by 30 degrees in its
+  // plane, so that the hull's strips cut its edges at a slant: its corners are points, its hull
+  // is the rectangle.
+  const Eigen::Vector3d origin(512000.25, 5403000.5, 250.0);
+  const Eigen::Vector3d u(std::cos(0.5236), std::sin(0.5236), 0.0);
+  const Eigen::Vector3d v(-std::sin(0.5236), std::cos(0.5236), 0.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 300; ++i) {
+    for (int j = 0; j < 400; ++j) points.push_back(origin + 0.003 * i * u + 0.003 * j * v);
+  }
+  const double expected = std::sqrt(0.897 * 1.197 / 120000.0);
+  EXPECT_NEAR(arealSpacing(fitted(points), points), expected, 1e-3 * expected);
+}
+
+TEST(PointSpacing, NearestNeighboursBeyondTheFirstGuessAreFound) {
+  // A cubic lattice of 2 cm, 125,000 points: the guess from the extent (four times diagonal /
+  // sqrt(n)) is under 2 cm, so every sample looks again as far as the reach.
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 50; ++i) {
+    for (int j = 0; j < 50; ++j) {
+      for (int k = 0; k < 50; ++k) points.emplace_back(0.02 * i, 0.02 * j, 0.02 * k);
+    }
+  }
+  EXPECT_NEAR(medianNearestDistance(points, 0.05), 0.02, 1e-9);
+  EXPECT_NEAR(medianNearestDistance(points, 0.015), 0.015, 1e-12);
 }
 
 TEST(PointSpacing, DegenerateInputsHaveNoSpacing) {
