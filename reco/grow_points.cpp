@@ -43,18 +43,21 @@ Candidate Grower::bestSegment(const Eigen::Vector3d& p, bool measure) {
   double best_distance = INFINITY;
   double nearest2 = INFINITY;
   std::uint32_t seen_mask = 0;
+  const double radius2 = radius_ * radius_;
   grid_.forEachNear(p, [&](const GridKey& key) {
     const AssignedCell* cell = assigned_.find(key);
-    if (cell == nullptr || grid_.squaredDistanceToCell(p, key) > radius_ * radius_) return;
+    if (cell == nullptr) return;
+    const double cell_distance2 = grid_.squaredDistanceToCell(p, key);
+    if (cell_distance2 > radius2) return;
     const bool unseen = (cell->segments & ~seen_mask) != 0;
-    if (!unseen && (!measure || grid_.squaredDistanceToCell(p, key) >= nearest2)) return;
+    if (!unseen && (!measure || cell_distance2 >= nearest2)) return;
     for (const Assigned& a : cell->points) {
       if (!measure && ((seen_mask >> a.segment) & 1u)) {
         if ((cell->segments & ~seen_mask) == 0) break;  // each of the cell's segments seen
         continue;
       }
       const double d2 = (a.position - p).squaredNorm();
-      if (d2 > radius_ * radius_) continue;
+      if (d2 > radius2) continue;
       nearest2 = std::min(nearest2, d2);
       if ((seen_mask >> a.segment) & 1u) continue;
       seen_mask |= 1u << a.segment;

@@ -255,8 +255,9 @@ class Grower {
   std::vector<std::uint64_t> outlined_count_;  // segment size when its outline was last drawn
   std::uint64_t featured_total_ = 0;           // all segments' size when the features were last found
   std::unordered_map<CellKey, CellState, lod::CellKeyHash> cells_;
-  // The segments' points by cell of grid_, whose step is 2 r: the 8 cells nearest a point hold
-  // all within r of it (PointGrid::forEachNear), 8 lookups a search where a grid of r took 27.
+  // The segments' points by cell of grid_, whose step is 2 r (segmentGrid): the 8 cells nearest
+  // a point hold all within r of it (PointGrid::forEachNear), 8 lookups a search where a grid of
+  // r took 27.
   // Unlike a cell's own grid (CellState::grid), a search here mostly stops at the first point
   // of each segment within r, so the wider cells' extra points cost little.
   GridMap<AssignedCell> assigned_;

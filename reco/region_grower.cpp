@@ -66,6 +66,12 @@ Features drawFeatures(std::span<const SegmentGeometry> segments, double radius) 
   return findEdgesAndCorners(segments, features);
 }
 
+// The grid of the segments' points (Grower::assigned_) for a search radius: cells twice as wide,
+// so that the 8 nearest a point hold every segment point within the radius (forEachNear).
+PointGrid segmentGrid(const Eigen::Vector3d& seed, double radius) {
+  return PointGrid(seed, 2.0 * radius);
+}
+
 }  // namespace
 
 Grower::Grower(lod::NodeCache& cache, const GrowParameters& parameters, const GrowOptions& options,
@@ -76,7 +82,7 @@ Grower::Grower(lod::NodeCache& cache, const GrowParameters& parameters, const Gr
       options_(options),
       progress_(progress),
       radius_(parameters.search_radius_m),
-      grid_(parameters.seed, 2.0 * parameters.search_radius_m),
+      grid_(segmentGrid(parameters.seed, parameters.search_radius_m)),
       claims_(octree_.cube()),
       membership_(octree_),
       start_(Clock::now()) {
@@ -132,7 +138,7 @@ void Grower::adaptToDataSpacing(const std::vector<Eigen::Vector3d>& seed_points,
   if (reach > radius_) {
     radius_from_data_ = true;
     radius_ = std::min(reach, 0.5 * parameters_.seed_radius_m);
-    grid_ = PointGrid(parameters_.seed, 2.0 * radius_);
+    grid_ = segmentGrid(parameters_.seed, radius_);
   }
   snapshot_.search_radius_m = radius_;
 }
