@@ -16,6 +16,7 @@
 
 #include "engine/gpu/instance.h"
 #include "engine/gpu/vk_check.h"
+#include "engine/gpu/vulkan_factory.h"
 
 namespace plumb::gpu {
 namespace {
@@ -136,6 +137,8 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
   check(vkEnumeratePhysicalDevices(instance.handle(), &count, devices.data()), "vkEnumeratePhysicalDevices",
         VK_INCOMPLETE);
 
+  if (choice.factory != nullptr) devices = {choice.factory->physicalDevice(instance.handle())};
+
   std::optional<Candidate> best;
   std::string rejected;
   for (VkPhysicalDevice device : devices) {
@@ -145,13 +148,16 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
     const std::string name = candidate.properties.deviceName;
     if (!lacks.empty()) {
       rejected += "; " + name + " lacks " + lacks;
-    } else if (!matches(choice, candidate.properties)) {
+    } else if (choice.factory == nullptr && !matches(choice, candidate.properties)) {
       rejected += "; " + name + " is not '" + choice.prefer + "'";
     } else if (!best || typeRank(candidate.properties.deviceType) < typeRank(best->properties.deviceType)) {
       best = candidate;
     }
   }
   if (!best) {
+    if (choice.factory != nullptr) {
+      throw Error("the headset's GPU cannot run Plumb" + rejected);
+    }
     throw Error("no Vulkan device can run Plumb" + (devices.empty() ? std::string(": none found") : rejected) +
                 " (install 'mesa-vulkan-drivers' for lavapipe on the CPU; PLUMB_GPU chooses a device)");
   }
@@ -179,7 +185,11 @@ Device::Device(const Instance& instance, const DeviceChoice& choice) {
     create.enabledExtensionCount = 1;
     create.ppEnabledExtensionNames = &swapchain_extension;
   }
-  check(vkCreateDevice(physical_, &create, nullptr, &device_), "vkCreateDevice");
+  if (choice.factory != nullptr) {
+    device_ = choice.factory->createDevice(physical_, create);
+  } else {
+    check(vkCreateDevice(physical_, &create, nullptr, &device_), "vkCreateDevice");
+  }
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
   if (instance.validating()) {
     set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(

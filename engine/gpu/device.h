@@ -18,6 +18,7 @@
 namespace plumb::gpu {
 
 class Instance;
+class VulkanFactory;
 
 struct DeviceChoice {
   // Empty: automatic (discrete first). "discrete", "cpu", or a part of the device name.
@@ -25,6 +26,9 @@ struct DeviceChoice {
   // A window's surface the device must present to (its queue family, VK_KHR_swapchain);
   // VK_NULL_HANDLE for headless work.
   VkSurfaceKHR present_to = VK_NULL_HANDLE;
+  // A headset's runtime: it names the one physical device to use (`prefer` is then ignored) and
+  // makes the logical device. Null: Plumb chooses and vkCreateDevice makes it.
+  VulkanFactory* factory = nullptr;
 };
 
 // The choice PLUMB_GPU asks for (automatic when unset).

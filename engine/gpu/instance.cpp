@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "engine/gpu/vk_check.h"
+#include "engine/gpu/vulkan_factory.h"
 
 namespace plumb::gpu {
 namespace {
@@ -87,11 +88,15 @@ Instance::Instance(const InstanceOptions& options, const std::vector<const char*
   create.ppEnabledLayerNames = layers.data();
   create.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
   create.ppEnabledExtensionNames = extensions.data();
-  const VkResult result = vkCreateInstance(&create, nullptr, &instance_);
-  if (result == VK_ERROR_INCOMPATIBLE_DRIVER) {
-    throw Error("no Vulkan 1.3 driver: install the Debian package 'mesa-vulkan-drivers' for lavapipe on the CPU");
+  if (options.factory != nullptr) {
+    instance_ = options.factory->createInstance(create);
+  } else {
+    const VkResult result = vkCreateInstance(&create, nullptr, &instance_);
+    if (result == VK_ERROR_INCOMPATIBLE_DRIVER) {
+      throw Error("no Vulkan 1.3 driver: install the Debian package 'mesa-vulkan-drivers' for lavapipe on the CPU");
+    }
+    check(result, "vkCreateInstance");
   }
-  check(result, "vkCreateInstance");
 
   if (options.validation) {
     const auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(

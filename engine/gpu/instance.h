@@ -10,8 +10,11 @@
 
 namespace plumb::gpu {
 
+class VulkanFactory;
+
 struct InstanceOptions {
-  bool validation = false;  // the layer must be installed (vulkan-validationlayers)
+  bool validation = false;           // the layer must be installed (vulkan-validationlayers)
+  VulkanFactory* factory = nullptr;  // makes the instance (a headset's runtime); null: vkCreateInstance
 };
 
 // What the commands and the app use: validation in debug builds where the layer is installed;

@@ -21,13 +21,17 @@ namespace plumb::gpu {
 class Device;
 class Instance;
 
+// An image a frame is presented to: a window's (Swapchain::acquire) or an OpenXR runtime's, an
+// eye of a headset (ui/xr), which has no semaphores and goes back in COLOR_ATTACHMENT_OPTIMAL.
 struct SwapchainImage {
   VkImage image;
   std::uint32_t index;
   VkExtent2D extent;
   VkFormat format;
-  VkSemaphore acquired;  // wait on it before writing the image
-  VkSemaphore rendered;  // signal it when the image is ready to present
+  VkSemaphore acquired;  // wait on it before writing the image; VK_NULL_HANDLE: nothing to wait for
+  VkSemaphore rendered;  // signal it when the image is ready to present; VK_NULL_HANDLE: none
+  VkImageLayout presented_layout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;  // the layout it is handed on in
+  bool decorated = true;  // the renderer's present hook draws on it (the window's interface)
 };
 
 class Swapchain {

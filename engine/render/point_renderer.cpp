@@ -100,38 +100,69 @@ std::uint32_t shaderSplatShape(SplatShape shape) {
   }
 }
 
-// Blits the frame's colour into the swapchain image and leaves that ready to present. The
-// colour image holds the colour already when the overlay pass ran; otherwise it comes from the
-// colour buffer first.
+// Copies the frame's colour into the swapchain image and leaves that ready to present. The
+// colour image holds the colour already when the overlay pass ran or an earlier image of the
+// frame took it; otherwise it comes from the colour buffer first.
 void recordPresentation(VkCommandBuffer commands, const RenderTarget& target, const gpu::SwapchainImage& present,
-                        bool colour_image_ready, const PointRenderer::PresentHook& hook) {
+                        bool colour_image_ready, const Rgba& background, const PointRenderer::PresentHook& hook) {
   const VkImage colour = target.colour_image.handle();
   if (!colour_image_ready) {
-    target.copyColourToImage(commands, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+    target.copyColourToImage(commands, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                              VK_ACCESS_2_TRANSFER_READ_BIT);
   } else {
     gpu::imageBarrier(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
+                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   }
   // The swapchain image: its old content is not needed; the acquire semaphore orders the write.
   gpu::imageBarrier(commands, present.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                    VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                     VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  VkImageBlit blit{};
-  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  blit.srcOffsets[1] = {static_cast<std::int32_t>(target.width), static_cast<std::int32_t>(target.height), 1};
-  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  blit.dstOffsets[1] = {static_cast<std::int32_t>(present.extent.width),
-                        static_cast<std::int32_t>(present.extent.height), 1};
-  vkCmdBlitImage(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present.image,
-                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
-  if (hook) {
+  const bool same_size = present.extent.width == target.width && present.extent.height == target.height;
+  const bool same_bytes = present.format == VK_FORMAT_R8G8B8A8_UNORM || present.format == VK_FORMAT_R8G8B8A8_SRGB;
+  if (same_size && same_bytes) {
+    // A copy, not a blit: an sRGB image (a headset's) takes the bytes, already sRGB-encoded.
+    VkImageCopy copy{};
+    copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.extent = {target.width, target.height, 1};
+    vkCmdCopyImage(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present.image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+  } else {
+    // Scaled to fit, centred: a window mirroring a headset's eye has another aspect ratio.
+    const double scale = std::min(static_cast<double>(present.extent.width) / target.width,
+                                  static_cast<double>(present.extent.height) / target.height);
+    const auto width = static_cast<std::int32_t>(std::lround(target.width * scale));
+    const auto height = static_cast<std::int32_t>(std::lround(target.height * scale));
+    const std::int32_t x = (static_cast<std::int32_t>(present.extent.width) - width) / 2;
+    const std::int32_t y = (static_cast<std::int32_t>(present.extent.height) - height) / 2;
+    if (width != static_cast<std::int32_t>(present.extent.width) ||
+        height != static_cast<std::int32_t>(present.extent.height)) {
+      const VkClearColorValue clear{{background[0] / 255.0f, background[1] / 255.0f, background[2] / 255.0f, 1.0f}};
+      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(commands, present.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
+      gpu::imageBarrier(commands, present.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    }
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {static_cast<std::int32_t>(target.width), static_cast<std::int32_t>(target.height), 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[0] = {x, y, 0};
+    blit.dstOffsets[1] = {x + width, y + height, 1};
+    vkCmdBlitImage(commands, colour, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, present.image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+  }
+  if (hook && present.decorated) {
     hook(commands, present);
     return;
   }
-  gpu::imageBarrier(commands, present.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                    VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE,
+  // An XR runtime reads the image after the frame's submission on the same queue; its own
+  // barrier waits for every earlier command, so none is named here.
+  gpu::imageBarrier(commands, present.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, present.presented_layout,
+                    VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE,
                     VK_ACCESS_2_NONE);
 }
 
@@ -311,7 +342,7 @@ GpuNodeCacheStats PointRenderer::gpuNodeStats() const {
 }
 
 FrameStats PointRenderer::render(const view::Camera& camera, const RenderSettings& settings, NodeLoading loading,
-                                 const gpu::SwapchainImage* present_to) {
+                                 std::span<const gpu::SwapchainImage> present_to) {
   Resources& r = *resources_;
   view::validateCamera(camera);
   if (settings.clip.active()) view::checkClipRegion(settings.clip, "render");
@@ -519,13 +550,21 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   const bool overlaid = r.overlay && !r.overlay->empty() &&
                         r.overlay_pass.record(commands, value % kFramesInFlight, target, *r.overlay, camera,
                                               settings.overlay_depth_tolerance);
-  if (present_to != nullptr) {
-    recordPresentation(commands, target, *present_to, overlaid, r.present_hook);
+  const gpu::SwapchainImage* window = nullptr;  // the one image with semaphores, if any
+  bool colour_image_ready = overlaid;
+  for (const gpu::SwapchainImage& image : present_to) {
+    recordPresentation(commands, target, image, colour_image_ready, settings.background, r.present_hook);
+    colour_image_ready = true;
+    if (image.acquired != VK_NULL_HANDLE || image.rendered != VK_NULL_HANDLE) {
+      assert(window == nullptr && "a frame presents to at most one image with semaphores");
+      window = &image;
+    }
+  }
+  if (window != nullptr) {
     // The hook may draw into the image too: its colour output waits for the acquire as well.
-    gpu::submit(
-        r.device, commands, r.timeline, value, present_to->acquired,
-        VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-        present_to->rendered);
+    gpu::submit(r.device, commands, r.timeline, value, window->acquired,
+                VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                window->rendered);
   } else {
     gpu::submit(r.device, commands, r.timeline, value);
   }

@@ -18,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "engine/io/png_image.h"
@@ -127,19 +128,22 @@ class PointRenderer {
   PointRenderer(const PointRenderer&) = delete;
   PointRenderer& operator=(const PointRenderer&) = delete;
 
-  // Renders one frame of the camera's viewport size off screen and, given `present_to` (an
-  // acquired swapchain image), copies it there for presentation: the frame waits for the image's
-  // `acquired` semaphore and signals its `rendered` one; the caller then presents. The camera
-  // must be valid. Throws gpu::DeviceLost when the device is lost, plumb::Error for a corrupt
-  // node (kWait).
+  // Renders one frame of the camera's viewport size off screen and copies it into each image of
+  // `present_to` (acquired swapchain images: a window's, a headset's eye, or both when the window
+  // mirrors the eye): the frame waits for the images' `acquired` semaphores and signals their
+  // `rendered` ones (at most one image has them); the caller then presents. An image of the
+  // frame's size and an RGBA8 format gets its bytes unchanged; another is scaled to fit, keeping
+  // the aspect ratio, on the background colour. The camera must be valid. Throws
+  // gpu::DeviceLost when the device is lost, plumb::Error for a corrupt node (kWait).
   FrameStats render(const view::Camera& camera, const RenderSettings& settings,
-                    NodeLoading loading = NodeLoading::kStream, const gpu::SwapchainImage* present_to = nullptr);
+                    NodeLoading loading = NodeLoading::kStream, std::span<const gpu::SwapchainImage> present_to = {});
 
   // Records more work into the frame's command buffer after the copy into the swapchain image:
   // a user interface drawn on top, a screenshot. The image arrives in TRANSFER_DST_OPTIMAL
   // with the copy's writes made available to the transfer stage; the hook must leave it in
-  // PRESENT_SRC_KHR. Without a hook the renderer makes that transition itself. Set it before
-  // render(); null removes it.
+  // PRESENT_SRC_KHR. Without a hook, or for an image not `decorated` (a headset's eye), the
+  // renderer moves the image to its presented_layout itself. Set it before render(); null
+  // removes it.
   using PresentHook = std::function<void(VkCommandBuffer commands, const gpu::SwapchainImage& image)>;
   void setPresentHook(PresentHook hook);
 

@@ -40,6 +40,16 @@ std::optional<CameraProblem> findCameraProblem(const Camera& camera) {
   if (!std::isfinite(camera.fov_deg) || camera.fov_deg < kMinFovDeg || camera.fov_deg >= 180.0) {
     return CameraProblem{"fov_deg", "must lie between 1e-6 degrees and 180 degrees (exclusive)"};
   }
+  if (camera.eye_fov) {
+    const EyeFov& fov = *camera.eye_fov;
+    const auto side = [](double angle) { return std::isfinite(angle) && std::abs(angle) < 0.5 * std::numbers::pi; };
+    if (!side(fov.left) || !side(fov.right) || !side(fov.up) || !side(fov.down)) {
+      return CameraProblem{"eye_fov", "each side's angle must be finite and within 90 degrees of the view direction"};
+    }
+    if (!(fov.left < fov.right) || !(fov.down < fov.up)) {
+      return CameraProblem{"eye_fov", "left must be less than right and down less than up"};
+    }
+  }
   if (!std::isfinite(camera.ortho_height_m) || camera.ortho_height_m < kMinExtent) {
     return CameraProblem{"ortho_height_m", "must be at least 1 micrometre"};
   }
@@ -86,6 +96,9 @@ Eigen::Matrix4d viewMatrix(const Camera& camera) {
 
 double metresPerPixel(const Camera& camera, double depth) {
   if (camera.projection == Projection::kOrthographic) return camera.ortho_height_m / camera.viewport_height_px;
+  if (camera.eye_fov) {
+    return depth * (std::tan(camera.eye_fov->up) - std::tan(camera.eye_fov->down)) / camera.viewport_height_px;
+  }
   return 2.0 * depth * std::tan(camera.fov_deg * std::numbers::pi / 360.0) / camera.viewport_height_px;
 }
 
@@ -95,7 +108,18 @@ Eigen::Matrix4d projectionMatrix(const Camera& camera) {
   const double near = camera.near_m;
   const double far = camera.far_m;
   Eigen::Matrix4d projection = Eigen::Matrix4d::Zero();
-  if (camera.projection == Projection::kPerspective) {
+  if (camera.projection == Projection::kPerspective && camera.eye_fov) {
+    // glFrustum with the sides at near * tan(angle).
+    const double left = std::tan(camera.eye_fov->left), right = std::tan(camera.eye_fov->right);
+    const double up = std::tan(camera.eye_fov->up), down = std::tan(camera.eye_fov->down);
+    projection(0, 0) = 2.0 / (right - left);
+    projection(0, 2) = (right + left) / (right - left);
+    projection(1, 1) = 2.0 / (up - down);
+    projection(1, 2) = (up + down) / (up - down);
+    projection(2, 2) = (far + near) / (near - far);
+    projection(2, 3) = 2.0 * far * near / (near - far);
+    projection(3, 2) = -1.0;
+  } else if (camera.projection == Projection::kPerspective) {
     // gluPerspective.
     const double f = 1.0 / std::tan(camera.fov_deg * std::numbers::pi / 360.0);
     projection(0, 0) = f / aspect;

@@ -62,6 +62,11 @@ Command addViewCommand(CLI::App& plumb) {
       ->capture_default_str();
   sub->add_option("--gpu", options->gpu, "The Vulkan device: cpu, discrete or a part of its name");
   addClipOptions(*sub, *clip);
+  sub->add_flag("--xr", options->xr,
+                "In a headset (OpenXR): the window mirrors the left eye; without a headset, the desktop as usual");
+  sub->add_option("--xr-resolution", options->xr_resolution_scale,
+                  "The eyes' resolution, a fraction of the headset's recommended size (default 1, 0.5 on the CPU)")
+      ->check(CLI::Range(0.1, 1.0));
   sub->add_flag("!--fixed-quality", options->adaptive_quality,
                 "Render a moving view as a still one (by default it drops resolution and points to keep 30 fps)");
   sub->add_flag("--real-time", options->script_wall_clock,

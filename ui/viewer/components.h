@@ -93,6 +93,11 @@ struct Selection {};
 
 enum class Tool : std::uint8_t { kNavigate, kGrow, kMeasure, kPolygon, kMove, kExtrude };
 
+// The tools that draw and edit polygons (drawing_tools.h).
+inline bool isDrawingTool(Tool tool) {
+  return tool == Tool::kPolygon || tool == Tool::kMove || tool == Tool::kExtrude;
+}
+
 // The tool's name as the palette shows it and scripts name it (lower case there).
 constexpr const char* toolName(Tool tool) {
   switch (tool) {

@@ -1,6 +1,8 @@
 #pragma once
 // The viewer's frame loop and state (viewer_app.h is the entry point). Internal to ui/viewer:
-// viewer.cpp runs frames, viewer_panels.cpp draws the palette.
+// viewer.cpp makes the viewer and brings its project and cloud, viewer_frame.cpp runs frames,
+// viewer_input.cpp turns the window's events and a script's steps into tool actions,
+// viewer_tools.cpp holds those actions, viewer_xr.cpp the headset, viewer_panels.cpp the palette.
 
 #include <atomic>
 #include <chrono>
@@ -33,11 +35,17 @@
 #include "ui/viewer/session_script.h"
 #include "ui/viewer/viewer_app.h"
 #include "ui/viewer/window.h"
+#include "ui/xr/stage.h"
 
 namespace plumb::lod {
 class NodeCache;
 class Octree;
 }  // namespace plumb::lod
+namespace plumb::xr {
+class Runtime;
+class Session;
+struct HeadsetFrame;
+}  // namespace plumb::xr
 
 namespace plumb::viewer {
 
@@ -51,6 +59,13 @@ struct LoadedCloud {
   std::unique_ptr<Navigator> navigator;
   std::unique_ptr<GrowSession> grow;
   ~LoadedCloud();
+};
+
+// The view a click is made in, which sets its detail: a camera and the screen the user sees
+// (the window, or a headset's eye at its full resolution), pixels.
+struct ClickView {
+  view::Camera camera;
+  double width_px = 0.0, height_px = 0.0;
 };
 
 // Progress of the background work that brings the cloud (demo generation, an import).
@@ -83,11 +98,12 @@ class Viewer {
   int run();
 
  private:
-  // --- frame steps (viewer.cpp) ---
+  // --- frame steps (viewer.cpp, viewer_frame.cpp, viewer_input.cpp, viewer_tools.cpp) ---
   void startLoading();
   // Shows `octree`; a `preview` of an import is replaced by the whole cloud when that is ready.
   void openCloud(std::shared_ptr<const lod::Octree> octree, std::string temporary, std::optional<view::Camera> home,
                  bool preview = false);
+  bool playScriptFrame(std::vector<InputEvent>& events, std::optional<std::string>& screenshot);
   void handleEvents(const std::vector<InputEvent>& events);
   void handleViewEvent(const InputEvent& event);
   void click(double x_px, double y_px);
@@ -98,9 +114,11 @@ class Viewer {
   void selectAt(double x_px, double y_px);
   void cornerOfSelected();
   void groupSelected();
-  void startGrow(const Eigen::Vector3d& picked);
+  void startGrow(const Eigen::Vector3d& picked, const ClickView& view);
+  ClickView desktopClickView() const;
   std::optional<reco::GrowParameters> clickParameters(const Eigen::Vector3d& picked,
-                                                      const std::optional<reco::DataAtClick>& data) const;
+                                                      const std::optional<reco::DataAtClick>& data,
+                                                      const ClickView& view) const;
   void setTool(Tool tool);
   void updateHover();
   void undo();
@@ -119,6 +137,16 @@ class Viewer {
   double renderScale() const;
   bool streamingIdle() const;
   void writeScreenshot(const std::string& name);
+
+  // --- the headset (viewer_xr.cpp) ---
+  static std::unique_ptr<xr::Runtime> connectHeadset(const ViewerOptions& options);
+  void startHeadsetSession();
+  void pollHeadset();
+  // Renders a headset frame (each eye, the window mirroring the left one) when a session runs;
+  // false when none does and the window is the desktop's.
+  bool renderHeadsetFrame(bool screenshot, const std::string& screenshot_name);
+  void headsetControllers(const xr::HeadsetFrame& frame);
+  void drawHeadsetControls();
 
   // --- the palette (viewer_panels.cpp) ---
   void drawPanels();
@@ -145,6 +173,8 @@ class Viewer {
   ViewerOptions options_;
   ProjectSession project_;  // first: a bad project file fails before any window opens
   WindowSystem windows_;
+  // The headset's runtime (--xr), before the instance and the device: it makes them.
+  std::unique_ptr<xr::Runtime> xr_runtime_;
   gpu::Instance instance_;
   Window window_;
   VkSurfaceKHR surface_;  // made before the device (which must present to it); the swapchain owns it
@@ -170,6 +200,15 @@ class Viewer {
   std::optional<ScriptPlayer> script_;
   int exit_status_ = 0;
   bool quit_ = false;
+
+  // The headset: a session while one runs, where its stage lies in the world (placed at the
+  // session's first frame where the desktop camera is), the trigger as last read.
+  std::unique_ptr<xr::Session> xr_session_;
+  std::optional<xr::StagePlacement> xr_stage_;
+  double xr_resolution_scale_ = 1.0;
+  bool xr_trigger_held_ = false;
+  std::uint64_t xr_frames_ = 0;
+  std::string xr_message_;  // the headset's last state or problem, for the palette
 
   render::RenderSettings settings_;
   view::ClipSettings clip_;                      // the View panel's section: each frame's settings_.clip

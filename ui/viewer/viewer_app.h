@@ -42,6 +42,11 @@ struct ViewerOptions {
   bool adaptive_quality = true;
   // What the view keeps of the cloud at first (--slice, --clip-box, ...); the View panel changes it.
   view::ClipSettings clip;
+  // Start in a headset (OpenXR): its runtime makes the Vulkan device, the session begins at once
+  // and the window mirrors the left eye. Without a runtime or a headset, one message and the
+  // desktop as usual.
+  bool xr = false;
+  double xr_resolution_scale = 0.0;  // of the runtime's recommended eye size; 0: 1, or 0.5 on the CPU
 };
 
 // Runs the viewer until its window closes or its script ends. Returns the exit status: non-zero

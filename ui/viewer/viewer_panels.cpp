@@ -247,7 +247,7 @@ void Viewer::drawGrowPanel() {
   // last click measured it); then the last click's.
   if (cloud_) {
     if (const std::optional<reco::GrowParameters> now =
-            clickParameters(cloud_->navigator->camera().target, grow_panel_.last_data)) {
+            clickParameters(cloud_->navigator->camera().target, grow_panel_.last_data, desktopClickView())) {
       ImGui::TextDisabled("at the view's centre now:");
       ImGui::Text("r_s %.3f m   d %.0f pts/m^3   r %.4f m", now->seed_radius_m, now->density, now->search_radius_m);
     }
@@ -422,6 +422,7 @@ void Viewer::drawViewPanel() {
     if (ImGui::Checkbox("Fly", &fly)) navigator.toggleFly();
     tooltip("W A S D to move, Q E down and up, drag to look, Shift faster, wheel for speed (F)");
   }
+  drawHeadsetControls();
   int budget_k = static_cast<int>(settings_.selection.point_budget / 1000);
   if (ImGui::SliderInt("Budget (k points)", &budget_k, 100, 20000, "%d", ImGuiSliderFlags_Logarithmic)) {
     settings_.selection.point_budget = static_cast<std::uint64_t>(budget_k) * 1000;

@@ -74,7 +74,7 @@ TEST(Swapchain, PresentsThroughResizeAndMinimise) {
         if (!image) continue;
         view::Camera camera =
             test::wallSceneFront(static_cast<int>(image->extent.width), static_cast<int>(image->extent.height));
-        renderer.render(camera, {}, render::NodeLoading::kWait, &*image);
+        renderer.render(camera, {}, render::NodeLoading::kWait, {&*image, 1});
         swapchain.present(*image);
         ++presented;
       }

@@ -119,6 +119,53 @@ TEST(Camera, OrthographicPixelSizeIsTheViewHeightOverThePixels) {
   EXPECT_NEAR(ndc(camera, camera.target).x(), 0.0, 1e-12);
 }
 
+// A headset's eye looks through an off-axis frustum: each side of the image lies at its own
+// angle from the view direction (OpenXR's XrFovf), here wider towards the nose (+x, the left eye).
+//
+//      left -40 deg \   | view   / right +50 deg
+//                    \  |       /
+//                     \ |     /
+//                       eye
+TEST(Camera, AnEyesFrustumPutsEachSideAtItsOwnAngle) {
+  Camera camera = cameraThreeMetresFrom({10.0, 20.0, 30.0});
+  camera.viewport_width_px = 900;
+  camera.viewport_height_px = 1000;
+  const double deg = std::numbers::pi / 180.0;
+  camera.eye_fov = EyeFov{-40.0 * deg, 50.0 * deg, 45.0 * deg, -35.0 * deg};
+  ASSERT_FALSE(findCameraProblem(camera));
+  // Camera space here: +x is world +x, +y is world +z, the view along world +y.
+  const auto at = [&](double x_angle, double y_angle) -> Eigen::Vector3d {
+    return camera.target + Eigen::Vector3d(3.0 * std::tan(x_angle), 0.0, 3.0 * std::tan(y_angle));
+  };
+  EXPECT_NEAR(ndc(camera, at(-40.0 * deg, 0.0)).x(), -1.0, kTight);
+  EXPECT_NEAR(ndc(camera, at(50.0 * deg, 0.0)).x(), 1.0, kTight);
+  EXPECT_NEAR(ndc(camera, at(0.0, 45.0 * deg)).y(), 1.0, kTight);
+  EXPECT_NEAR(ndc(camera, at(0.0, -35.0 * deg)).y(), -1.0, kTight);
+  // The view direction is off the image's centre, towards its wider side.
+  EXPECT_LT(ndc(camera, camera.target).x(), 0.0);
+  // Depth is unchanged by the sides.
+  Camera symmetric = camera;
+  symmetric.eye_fov.reset();
+  EXPECT_NEAR(ndc(camera, camera.target).z(), ndc(symmetric, camera.target).z(), kTight);
+  // A pixel's height at 3 m: the frustum's height there over the rows, as reco measures it.
+  const double expected = 3.0 * (std::tan(45.0 * deg) + std::tan(35.0 * deg)) / 1000.0;
+  EXPECT_NEAR(metresPerPixel(camera, 3.0), expected, 1e-12);
+  EXPECT_NEAR(reco::pixelSizeAt(viewAtClick(camera, camera.target)), expected, 1e-12);
+}
+
+TEST(Camera, AnEyesFrustumMustHoldTogether) {
+  Camera camera = cameraThreeMetresFrom({0.0, 0.0, 0.0});
+  camera.eye_fov = EyeFov{0.5, -0.5, 0.5, -0.5};
+  ASSERT_TRUE(findCameraProblem(camera));
+  EXPECT_EQ(findCameraProblem(camera)->field, "eye_fov");
+  camera.eye_fov = EyeFov{-0.5, 0.5, 1.6, -0.5};  // beyond 90 degrees
+  EXPECT_EQ(findCameraProblem(camera)->field, "eye_fov");
+  camera.eye_fov = EyeFov{-0.5, std::numeric_limits<double>::quiet_NaN(), 0.5, -0.5};
+  EXPECT_EQ(findCameraProblem(camera)->field, "eye_fov");
+  camera.eye_fov = EyeFov{0.1, 0.5, 0.6, 0.2};  // wholly to one side: allowed
+  EXPECT_FALSE(findCameraProblem(camera));
+}
+
 TEST(Camera, ValidationNamesTheBrokenRule) {
   const auto field = [](const Camera& camera) {
     const auto problem = findCameraProblem(camera);

@@ -1,0 +1,305 @@
+// The session's life cycle and frames.
+//
+//   1. xrCreateSession with the Vulkan binding (XrGraphicsBindingVulkan2KHR: Plumb's instance,
+//      physical device, device and its one queue); the stage space (STAGE where the runtime
+//      has one: the floor at 0, else LOCAL); the controllers' actions.
+//   2. A colour swapchain per eye at the recommended size: R8G8B8A8_SRGB where offered, so
+//      that the renderer's bytes (already sRGB-encoded, as the window shows them) are copied
+//      unchanged and the compositor decodes them as it should.
+//   3. Events: READY -> xrBeginSession, STOPPING -> xrEndSession, EXITING and LOSS_PENDING ->
+//      ended; FOCUSED and VISIBLE say whether input and pictures reach the user.
+//   4. Frames: xrWaitFrame, xrBeginFrame, xrLocateViews; each eye acquired, rendered,
+//      released; xrEndFrame with one projection layer of the views located for this frame.
+
+#include "ui/xr/xr_session.h"
+
+#define XR_USE_GRAPHICS_API_VULKAN
+#include <openxr/openxr_platform.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/gpu/device.h"
+#include "engine/gpu/instance.h"
+#include "ui/xr/xr_check.h"
+#include "ui/xr/xr_input.h"
+#include "ui/xr/xr_runtime.h"
+
+namespace plumb::xr {
+namespace {
+
+constexpr XrViewConfigurationType kStereo = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+
+XrSpace referenceSpace(XrSession session, XrReferenceSpaceType type) {
+  auto create = xrStruct<XrReferenceSpaceCreateInfo>(XR_TYPE_REFERENCE_SPACE_CREATE_INFO);
+  create.referenceSpaceType = type;
+  create.poseInReferenceSpace.orientation.w = 1.0f;
+  XrSpace space = XR_NULL_HANDLE;
+  check(xrCreateReferenceSpace(session, &create, &space), "xrCreateReferenceSpace");
+  return space;
+}
+
+XrReferenceSpaceType stageType(XrSession session) {
+  std::uint32_t count = 0;
+  check(xrEnumerateReferenceSpaces(session, 0, &count, nullptr), "xrEnumerateReferenceSpaces");
+  std::vector<XrReferenceSpaceType> types(count);
+  check(xrEnumerateReferenceSpaces(session, count, &count, types.data()), "xrEnumerateReferenceSpaces");
+  return std::find(types.begin(), types.end(), XR_REFERENCE_SPACE_TYPE_STAGE) != types.end()
+             ? XR_REFERENCE_SPACE_TYPE_STAGE
+             : XR_REFERENCE_SPACE_TYPE_LOCAL;
+}
+
+VkFormat colourFormat(XrSession session) {
+  std::uint32_t count = 0;
+  check(xrEnumerateSwapchainFormats(session, 0, &count, nullptr), "xrEnumerateSwapchainFormats");
+  std::vector<std::int64_t> formats(count);
+  check(xrEnumerateSwapchainFormats(session, count, &count, formats.data()), "xrEnumerateSwapchainFormats");
+  // The renderer's colour is RGBA8: a copy keeps its bytes into either of these.
+  for (const VkFormat wanted : {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R8G8B8A8_UNORM}) {
+    if (std::find(formats.begin(), formats.end(), static_cast<std::int64_t>(wanted)) != formats.end()) return wanted;
+  }
+  throw Error("the OpenXR runtime offers no RGBA8 swapchain format");
+}
+
+const char* stateName(XrSessionState state) {
+  switch (state) {
+    case XR_SESSION_STATE_IDLE:
+      return "idle";
+    case XR_SESSION_STATE_READY:
+      return "ready";
+    case XR_SESSION_STATE_SYNCHRONIZED:
+      return "synchronized";
+    case XR_SESSION_STATE_VISIBLE:
+      return "visible";
+    case XR_SESSION_STATE_FOCUSED:
+      return "focused";
+    case XR_SESSION_STATE_STOPPING:
+      return "stopping";
+    case XR_SESSION_STATE_LOSS_PENDING:
+      return "lost";
+    case XR_SESSION_STATE_EXITING:
+      return "exiting";
+    default:
+      return "unknown";
+  }
+}
+
+}  // namespace
+
+Session::Session(Runtime& runtime, const gpu::Instance& instance, const gpu::Device& device, double resolution_scale)
+    : runtime_(runtime) {
+  auto binding = xrStruct<XrGraphicsBindingVulkan2KHR>(XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR);
+  binding.instance = instance.handle();
+  binding.physicalDevice = device.physical();
+  binding.device = device.handle();
+  binding.queueFamilyIndex = device.queueFamily();
+  binding.queueIndex = 0;
+  auto create = xrStruct<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
+  create.next = &binding;
+  create.systemId = runtime.system();
+  check(xrCreateSession(runtime.instance(), &create, &session_), "starting a session on " + runtime.name());
+  try {
+    stage_ = referenceSpace(session_, stageType(session_));
+    view_space_ = referenceSpace(session_, XR_REFERENCE_SPACE_TYPE_VIEW);
+
+    std::uint32_t count = 0;
+    check(xrEnumerateViewConfigurationViews(runtime.instance(), runtime.system(), kStereo, 0, &count, nullptr),
+          "xrEnumerateViewConfigurationViews");
+    if (count != kEyes) throw Error(runtime.name() + " has " + std::to_string(count) + " views, not two eyes");
+    std::array<XrViewConfigurationView, kEyes> views{};
+    for (XrViewConfigurationView& view : views) view.type = XR_TYPE_VIEW_CONFIGURATION_VIEW;
+    check(xrEnumerateViewConfigurationViews(runtime.instance(), runtime.system(), kStereo, count, &count, views.data()),
+          "xrEnumerateViewConfigurationViews");
+    const auto scaled = [&](std::uint32_t recommended, std::uint32_t most) {
+      const double size = std::round(recommended * std::clamp(resolution_scale, 0.1, 1.0));
+      return std::clamp<std::uint32_t>(static_cast<std::uint32_t>(size), 16, most);
+    };
+    extent_ = {scaled(views[0].recommendedImageRectWidth, views[0].maxImageRectWidth),
+               scaled(views[0].recommendedImageRectHeight, views[0].maxImageRectHeight)};
+    format_ = colourFormat(session_);
+
+    for (Swapchain& swapchain : swapchains_) {
+      auto info = xrStruct<XrSwapchainCreateInfo>(XR_TYPE_SWAPCHAIN_CREATE_INFO);
+      info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT;
+      info.format = format_;
+      info.sampleCount = 1;
+      info.width = extent_.width;
+      info.height = extent_.height;
+      info.faceCount = 1;
+      info.arraySize = 1;
+      info.mipCount = 1;
+      check(xrCreateSwapchain(session_, &info, &swapchain.handle), "xrCreateSwapchain");
+      std::uint32_t images = 0;
+      check(xrEnumerateSwapchainImages(swapchain.handle, 0, &images, nullptr), "xrEnumerateSwapchainImages");
+      std::vector<XrSwapchainImageVulkan2KHR> vulkan(images, {XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR, nullptr, {}});
+      check(xrEnumerateSwapchainImages(swapchain.handle, images, &images,
+                                       reinterpret_cast<XrSwapchainImageBaseHeader*>(vulkan.data())),
+            "xrEnumerateSwapchainImages");
+      for (const XrSwapchainImageVulkan2KHR& image : vulkan) swapchain.images.push_back(image.image);
+    }
+    input_ = std::make_unique<Input>(runtime.instance(), session_);
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
+Session::~Session() {
+  destroy();
+}
+
+void Session::destroy() {
+  input_.reset();
+  for (Swapchain& swapchain : swapchains_) {
+    if (swapchain.handle != XR_NULL_HANDLE) xrDestroySwapchain(swapchain.handle);
+    swapchain.handle = XR_NULL_HANDLE;
+  }
+  if (view_space_ != XR_NULL_HANDLE) xrDestroySpace(view_space_);
+  if (stage_ != XR_NULL_HANDLE) xrDestroySpace(stage_);
+  view_space_ = stage_ = XR_NULL_HANDLE;
+  if (session_ != XR_NULL_HANDLE) xrDestroySession(session_);
+  session_ = XR_NULL_HANDLE;
+}
+
+SessionState Session::poll(std::string& message) {
+  message.clear();
+  auto event = xrStruct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+  while (check(xrPollEvent(runtime_.instance(), &event), "xrPollEvent") == XR_SUCCESS) {
+    if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
+      state_ = SessionState::kEnded;
+      message = runtime_.name() + " is going away: the headset session ended";
+    } else if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
+      const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+      switch (changed.state) {
+        case XR_SESSION_STATE_READY: {
+          auto begin = xrStruct<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
+          begin.primaryViewConfigurationType = kStereo;
+          check(xrBeginSession(session_, &begin), "xrBeginSession");
+          state_ = SessionState::kRunning;
+          break;
+        }
+        case XR_SESSION_STATE_STOPPING:
+          check(xrEndSession(session_), "xrEndSession");
+          state_ = SessionState::kStopped;
+          break;
+        case XR_SESSION_STATE_EXITING:
+        case XR_SESSION_STATE_LOSS_PENDING:
+          state_ = SessionState::kEnded;
+          break;
+        default:
+          break;
+      }
+      focused_ = changed.state == XR_SESSION_STATE_FOCUSED;
+      message = std::string("headset session ") + stateName(changed.state);
+    }
+    event = xrStruct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+  }
+  return state_;
+}
+
+void Session::requestExit() {
+  if (state_ == SessionState::kRunning) {
+    check(xrRequestExitSession(session_), "xrRequestExitSession");
+  } else {
+    state_ = SessionState::kEnded;  // not begun: nothing for the runtime to stop
+  }
+  exit_requested_ = true;
+}
+
+std::optional<HeadsetFrame> Session::beginFrame() {
+  if (state_ != SessionState::kRunning) return std::nullopt;
+  auto timing = xrStruct<XrFrameState>(XR_TYPE_FRAME_STATE);
+  check(xrWaitFrame(session_, nullptr, &timing), "xrWaitFrame");
+  check(xrBeginFrame(session_, nullptr), "xrBeginFrame");
+  HeadsetFrame frame;
+  frame.display_time = timing.predictedDisplayTime;
+  frame.display_period = timing.predictedDisplayPeriod;
+  frame.should_render = timing.shouldRender == XR_TRUE;
+  if (!frame.should_render) return frame;
+
+  auto locate = xrStruct<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
+  locate.viewConfigurationType = kStereo;
+  locate.displayTime = frame.display_time;
+  locate.space = stage_;
+  auto view_state = xrStruct<XrViewState>(XR_TYPE_VIEW_STATE);
+  std::array<XrView, kEyes> views{};
+  for (XrView& view : views) view.type = XR_TYPE_VIEW;
+  std::uint32_t count = 0;
+  check(xrLocateViews(session_, &locate, &view_state, kEyes, &count, views.data()), "xrLocateViews");
+  const XrViewStateFlags tracked = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
+  if (count != kEyes || (view_state.viewStateFlags & tracked) != tracked) {
+    frame.should_render = false;  // tracking lost: a frame drawn from a stale pose would swim
+    return frame;
+  }
+  for (int eye = 0; eye < kEyes; ++eye) {
+    const XrView& view = views[static_cast<std::size_t>(eye)];
+    frame.eyes[static_cast<std::size_t>(eye)] = {
+        toPose(view.pose), {view.fov.angleLeft, view.fov.angleRight, view.fov.angleUp, view.fov.angleDown}};
+  }
+  auto head = xrStruct<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);
+  check(xrLocateSpace(view_space_, stage_, frame.display_time, &head), "xrLocateSpace (head)");
+  frame.head = toPose(head.pose);
+  input_->sync(stage_, frame.display_time, focused_);
+  return frame;
+}
+
+gpu::SwapchainImage Session::acquireEye(int eye) {
+  Swapchain& swapchain = swapchains_[static_cast<std::size_t>(eye)];
+  auto acquire = xrStruct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
+  check(xrAcquireSwapchainImage(swapchain.handle, &acquire, &swapchain.acquired), "xrAcquireSwapchainImage");
+  auto wait = xrStruct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
+  wait.timeout = XR_INFINITE_DURATION;
+  check(xrWaitSwapchainImage(swapchain.handle, &wait), "xrWaitSwapchainImage");
+  gpu::SwapchainImage image{};
+  image.image = swapchain.images.at(swapchain.acquired);
+  image.index = swapchain.acquired;
+  image.extent = extent_;
+  image.format = format_;
+  image.acquired = VK_NULL_HANDLE;
+  image.rendered = VK_NULL_HANDLE;
+  image.presented_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;  // XR_KHR_vulkan_enable2's contract
+  image.decorated = false;
+  return image;
+}
+
+void Session::releaseEye(int eye) {
+  auto release = xrStruct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
+  check(xrReleaseSwapchainImage(swapchains_[static_cast<std::size_t>(eye)].handle, &release),
+        "xrReleaseSwapchainImage");
+}
+
+void Session::endFrame(const HeadsetFrame& frame, bool rendered) {
+  std::array<XrCompositionLayerProjectionView, kEyes> views{};
+  auto layer = xrStruct<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
+  const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<const XrCompositionLayerBaseHeader*>(&layer)};
+  if (rendered) {
+    for (int eye = 0; eye < kEyes; ++eye) {
+      const EyeView& located = frame.eyes[static_cast<std::size_t>(eye)];
+      XrCompositionLayerProjectionView& view = views[static_cast<std::size_t>(eye)];
+      view.type = XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW;
+      view.pose.position = {static_cast<float>(located.pose.position.x()),
+                            static_cast<float>(located.pose.position.y()),
+                            static_cast<float>(located.pose.position.z())};
+      view.pose.orientation = {
+          static_cast<float>(located.pose.orientation.x()), static_cast<float>(located.pose.orientation.y()),
+          static_cast<float>(located.pose.orientation.z()), static_cast<float>(located.pose.orientation.w())};
+      view.fov = {static_cast<float>(located.fov.left), static_cast<float>(located.fov.right),
+                  static_cast<float>(located.fov.up), static_cast<float>(located.fov.down)};
+      view.subImage.swapchain = swapchains_[static_cast<std::size_t>(eye)].handle;
+      view.subImage.imageRect = {{0, 0},
+                                 {static_cast<std::int32_t>(extent_.width), static_cast<std::int32_t>(extent_.height)}};
+      view.subImage.imageArrayIndex = 0;
+    }
+    layer.space = stage_;
+    layer.viewCount = kEyes;
+    layer.views = views.data();
+  }
+  auto end = xrStruct<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
+  end.displayTime = frame.display_time;
+  end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+  end.layerCount = rendered ? 1 : 0;
+  end.layers = layers;
+  check(xrEndFrame(session_, &end), "xrEndFrame");
+}
+
+}  // namespace plumb::xr
