@@ -342,7 +342,7 @@ GpuNodeCacheStats PointRenderer::gpuNodeStats() const {
 }
 
 FrameStats PointRenderer::render(const view::Camera& camera, const RenderSettings& settings, NodeLoading loading,
-                                 std::span<const gpu::SwapchainImage> present_to) {
+                                 std::span<const gpu::SwapchainImage> present_to, const view::Camera* choose_with) {
   Resources& r = *resources_;
   view::validateCamera(camera);
   if (settings.clip.active()) view::checkClipRegion(settings.clip, "render");
@@ -388,7 +388,9 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
 
   // 2. Select and upload.
   const lod::Octree& octree = r.nodes.octree();
-  const NodeSelection selection = selectNodes(octree, camera, settings.selection, settings.clip);
+  if (choose_with != nullptr) view::validateCamera(*choose_with);
+  const NodeSelection selection =
+      selectNodes(octree, choose_with != nullptr ? *choose_with : camera, settings.selection, settings.clip);
   stats.nodes_selected = selection.nodes.size();
   stats.points_selected = selection.points;
   stats.budget_reached = selection.budget_reached;

@@ -135,8 +135,12 @@ class PointRenderer {
   // frame's size and an RGBA8 format gets its bytes unchanged; another is scaled to fit, keeping
   // the aspect ratio, on the background colour. The camera must be valid. Throws
   // gpu::DeviceLost when the device is lost, plumb::Error for a corrupt node (kWait).
+  // `choose_with`, when given, is the camera whose view chooses the nodes drawn instead of
+  // `camera`: a headset's two eyes draw one selection (a view holding both), so that both show
+  // the same detail.
   FrameStats render(const view::Camera& camera, const RenderSettings& settings,
-                    NodeLoading loading = NodeLoading::kStream, std::span<const gpu::SwapchainImage> present_to = {});
+                    NodeLoading loading = NodeLoading::kStream, std::span<const gpu::SwapchainImage> present_to = {},
+                    const view::Camera* choose_with = nullptr);
 
   // Records more work into the frame's command buffer after the copy into the swapchain image:
   // a user interface drawn on top, a screenshot. The image arrives in TRANSFER_DST_OPTIMAL

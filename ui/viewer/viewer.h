@@ -33,6 +33,7 @@
 #include "ui/viewer/scene_state.h"
 #include "ui/viewer/screenshot.h"
 #include "ui/viewer/session_script.h"
+#include "ui/viewer/snapping.h"
 #include "ui/viewer/viewer_app.h"
 #include "ui/viewer/window.h"
 #include "ui/xr/stage.h"
@@ -66,6 +67,17 @@ struct LoadedCloud {
 struct ClickView {
   view::Camera camera;
   double width_px = 0.0, height_px = 0.0;
+};
+
+// Where a pointer is, for the tools: the view it points through and its pixel there. The
+// mouse: the window's camera and the cursor, picking from the last frame; a controller: a view
+// along its ray, its centre pixel, picking from a frame of that view rendered on demand.
+struct PointerView {
+  view::Camera camera;
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();      // in the camera's viewport
+  Eigen::Vector2d motion_px = Eigen::Vector2d::Zero();  // since the last frame, in that view
+  PointPicker pick;                                     // the cloud's point near a pixel; null: none
+  ClickView click_view;                                 // whose detail a grow from here takes
 };
 
 // Progress of the background work that brings the cloud (demo generation, an import).
@@ -106,12 +118,13 @@ class Viewer {
   bool playScriptFrame(std::vector<InputEvent>& events, std::optional<std::string>& screenshot);
   void handleEvents(const std::vector<InputEvent>& events);
   void handleViewEvent(const InputEvent& event);
-  void click(double x_px, double y_px);
+  void click(const PointerView& at);
   bool clipBoxEvent(const InputEvent& event);
   std::shared_ptr<const render::OverlayScene> withClipBox(std::shared_ptr<const render::OverlayScene> scene);
   bool drawingKey(const InputEvent& event);
-  Pointer pointerAt(double x_px, double y_px, bool pick_point);
-  void selectAt(double x_px, double y_px);
+  PointerView mousePointer(double x_px, double y_px);
+  Pointer pointerAt(const PointerView& at, bool pick_point);
+  void selectAt(const PointerView& at);
   void cornerOfSelected();
   void groupSelected();
   void startGrow(const Eigen::Vector3d& picked, const ClickView& view);
@@ -121,6 +134,7 @@ class Viewer {
                                                       const ClickView& view) const;
   void setTool(Tool tool);
   void updateHover();
+  void hoverAt(const std::optional<PointerView>& at);
   void undo();
   void redo();
   void deleteSelected();
@@ -145,8 +159,12 @@ class Viewer {
   // Renders a headset frame (each eye, the window mirroring the left one) when a session runs;
   // false when none does and the window is the desktop's.
   bool renderHeadsetFrame(bool screenshot, const std::string& screenshot_name);
+  std::optional<PointerView> controllerPointer(const xr::HeadsetFrame& frame);
   void headsetControllers(const xr::HeadsetFrame& frame);
+  void moveInHeadset(const xr::HeadsetFrame& frame);
+  void adaptHeadsetBudget(const xr::HeadsetFrame& frame);
   void drawHeadsetControls();
+  void reportHeadset() const;
 
   // --- the palette (viewer_panels.cpp) ---
   void drawPanels();
@@ -207,8 +225,24 @@ class Viewer {
   std::optional<xr::StagePlacement> xr_stage_;
   double xr_resolution_scale_ = 1.0;
   bool xr_trigger_held_ = false;
+  std::optional<Eigen::Vector3d> xr_aim_point_;  // what the right controller aimed at last frame
+  bool xr_turn_held_ = false;                    // the right thumbstick, pushed aside: one snap turn a push
+  bool xr_secondary_held_ = false;               // B or Y: one toggle between 1:1 and the model a press
+  bool xr_model_ = false;                        // the model on a table (else 1:1)
+  // The hands squeezing the world (bit 0 left, bit 1 right), the placement and hold they began with.
+  struct HeadsetGrab {
+    int hands = 0;
+    xr::StagePlacement start;
+    xr::Hold from;
+  };
+  std::optional<HeadsetGrab> xr_grab_;
   std::uint64_t xr_frames_ = 0;
-  std::string xr_message_;  // the headset's last state or problem, for the palette
+  // The share of the point budget the eyes draw, following the frame time towards the headset's
+  // rate (a session on the wall clock only: a script's frames keep the whole budget).
+  double xr_budget_share_ = 1.0;
+  std::chrono::steady_clock::time_point xr_last_frame_{};
+  std::vector<double> xr_frame_ms_, xr_eye_gpu_ms_;  // wall time a headset frame; GPU time an eye (--profile)
+  std::string xr_message_;                           // the headset's last state or problem, for the palette
 
   render::RenderSettings settings_;
   view::ClipSettings clip_;                      // the View panel's section: each frame's settings_.clip

@@ -82,6 +82,7 @@ int Viewer::run() {
         static_cast<double>(render_scale_), adaptive_quality_ ? moving_scale_ : static_cast<double>(render_scale_),
         device_.name().c_str());
   }
+  reportHeadset();
   if (!splat_ms_.empty()) {
     const auto median = [](std::vector<double> values) {
       std::sort(values.begin(), values.end());

@@ -135,7 +135,7 @@ bool Viewer::drawingKey(const InputEvent& event) {
     return true;
   }
   if (event.key == GLFW_KEY_ENTER || event.key == GLFW_KEY_KP_ENTER) {
-    drawing_.enter(pointerAt(hovered_px_.x(), hovered_px_.y(), false), cloud_->navigator->camera());
+    drawing_.enter(pointerAt(mousePointer(hovered_px_.x(), hovered_px_.y()), false), cloud_->navigator->camera());
     return true;
   }
   return false;
@@ -221,7 +221,11 @@ void Viewer::handleViewEvent(const InputEvent& event) {
   const double scale = renderScale();
   const bool clicked =
       cloud_->navigator->handle(event, [this, scale](double x, double y) { return pickAt(x * scale, y * scale); });
-  if (clicked) click(event.x * scale, event.y * scale);
+  if (clicked) {
+    const PointerView at = mousePointer(event.x * scale, event.y * scale);
+    click(at);
+    if (isDrawingTool(scene_.tool().active)) hovered_px_ = at.pixel;
+  }
 }
 
 // The scene's overlay, with the clip box's edges and handles when there is one. Made anew only

@@ -24,27 +24,37 @@ std::optional<Eigen::Vector3d> Viewer::pickAt(double x_px, double y_px) {
   return Eigen::Vector3d(picked->position[0], picked->position[1], picked->position[2]);
 }
 
-// What the pointer at (x, y) (render pixels) snaps to, with its ray and movement; a click also
-// asks the frame for the cloud's point under it.
-Pointer Viewer::pointerAt(double x_px, double y_px, bool pick_point) {
-  const view::Camera& camera = cloud_->navigator->camera();
+// The mouse at (x, y) (render pixels) in the window's view.
+PointerView Viewer::mousePointer(double x_px, double y_px) {
+  PointerView at;
+  at.camera = cloud_->navigator->camera();
+  at.pixel = Eigen::Vector2d(x_px, y_px);
+  at.motion_px = at.pixel - hovered_px_;
+  at.pick = [this](double x, double y) { return pickAt(x, y); };
+  at.click_view = desktopClickView();
+  return at;
+}
+
+// What the pointer snaps to, with its ray and movement; a click also asks for the cloud's point
+// under it.
+Pointer Viewer::pointerAt(const PointerView& at, bool pick_point) {
   Pointer pointer;
-  pointer.snap = snapCursor(scene_.registry(), camera, x_px, y_px,
-                            pick_point ? PointPicker([this](double x, double y) { return pickAt(x, y); }) : nullptr);
-  pointer.ray = view::rayThroughPixel(camera, x_px, y_px);
-  pointer.pixel = Eigen::Vector2d(x_px, y_px);
-  pointer.motion_px = pointer.pixel - hovered_px_;
+  pointer.snap =
+      snapCursor(scene_.registry(), at.camera, at.pixel.x(), at.pixel.y(), pick_point ? at.pick : PointPicker{});
+  pointer.ray = view::rayThroughPixel(at.camera, at.pixel.x(), at.pixel.y());
+  pointer.pixel = at.pixel;
+  pointer.motion_px = at.motion_px;
   return pointer;
 }
 
 // Navigate: a click selects the polygon or segment under the cursor (Ctrl adds or removes).
-void Viewer::selectAt(double x_px, double y_px) {
-  const view::Camera& camera = cloud_->navigator->camera();
-  ecs::Entity entity = polygonAt(scene_.registry(), camera, x_px, y_px);
+void Viewer::selectAt(const PointerView& at) {
+  const double x_px = at.pixel.x(), y_px = at.pixel.y();
+  ecs::Entity entity = polygonAt(scene_.registry(), at.camera, x_px, y_px);
   if (entity == ecs::kNullEntity) {
     SnapOptions walls_too;
     walls_too.edge_on_planes = true;
-    const std::optional<Snap> snap = snapCursor(scene_.registry(), camera, x_px, y_px, {}, walls_too);
+    const std::optional<Snap> snap = snapCursor(scene_.registry(), at.camera, x_px, y_px, {}, walls_too);
     if (snap && snap->kind == Snap::Kind::kPlane) entity = snap->source;
   }
   if (entity != ecs::kNullEntity) {
@@ -114,37 +124,41 @@ void Viewer::groupSelected() {
   scene_.registry().patch<ToolState>(scene_.toolEntity(), [&](ToolState& t) { t.drawing.message = message; });
 }
 
-void Viewer::click(double x_px, double y_px) {
+void Viewer::click(const PointerView& at) {
   const Tool tool = scene_.tool().active;
-  if (tool == Tool::kNavigate) return selectAt(x_px, y_px);
+  if (tool == Tool::kNavigate) return selectAt(at);
   if (isDrawingTool(tool)) {
-    const Pointer pointer = pointerAt(x_px, y_px, true);
-    drawing_.click(pointer, cloud_->navigator->camera());
-    hovered_px_ = pointer.pixel;
+    drawing_.click(pointerAt(at, true), at.camera);
     return;
   }
   if (tool == Tool::kGrow) {
-    const std::optional<Eigen::Vector3d> picked = pickAt(x_px, y_px);
-    if (picked) startGrow(*picked, desktopClickView());  // nothing on the background
+    const std::optional<Eigen::Vector3d> picked = at.pick ? at.pick(at.pixel.x(), at.pixel.y()) : std::nullopt;
+    if (picked) startGrow(*picked, at.click_view);  // nothing on the background
     return;
   }
-  measure_.click(cloud_->navigator->camera(), x_px, y_px, [this](double x, double y) { return pickAt(x, y); });
+  measure_.click(at.camera, at.pixel.x(), at.pixel.y(), at.pick);
 }
 
-// In the Measure and drawing tools, what the cursor would snap to (features only: no readback
-// of the frame), and the drawing tools' preview and direction.
+// The mouse's hover, unless the palette has it.
 void Viewer::updateHover() {
+  const bool over_view = cloud_ && !imgui_.wantsMouse();
+  const std::optional<PointerView> at =
+      over_view ? std::optional(mousePointer(mouse_x_ * renderScale(), mouse_y_ * renderScale())) : std::nullopt;
+  hoverAt(at);
+  if (at && isDrawingTool(scene_.tool().active)) hovered_px_ = at->pixel;
+}
+
+// In the Measure and drawing tools, what the pointer would snap to (features only: no readback
+// of a frame), and the drawing tools' preview and direction.
+void Viewer::hoverAt(const std::optional<PointerView>& at) {
   std::optional<Snap> hover;
   const Tool tool = scene_.tool().active;
-  if (cloud_ && (tool == Tool::kMeasure || isDrawingTool(tool)) && !imgui_.wantsMouse()) {
-    const Pointer pointer = pointerAt(mouse_x_ * renderScale(), mouse_y_ * renderScale(), false);
-    hover = tool == Tool::kMeasure ? snapCursor(scene_.registry(), cloud_->navigator->camera(), pointer.pixel.x(),
-                                                pointer.pixel.y(), nullptr, MeasureTool::snapOptionsFor(scene_.tool()))
+  if (at && (tool == Tool::kMeasure || isDrawingTool(tool))) {
+    const Pointer pointer = pointerAt(*at, false);
+    hover = tool == Tool::kMeasure ? snapCursor(scene_.registry(), at->camera, at->pixel.x(), at->pixel.y(), nullptr,
+                                                MeasureTool::snapOptionsFor(scene_.tool()))
                                    : pointer.snap;
-    if (isDrawingTool(tool)) {
-      drawing_.hover(pointer, cloud_->navigator->camera());
-      hovered_px_ = pointer.pixel;
-    }
+    if (isDrawingTool(tool)) drawing_.hover(pointer, at->camera);
   }
   const std::optional<Snap>& now = scene_.tool().hover;
   const bool same = hover.has_value() == now.has_value() &&

@@ -11,7 +11,9 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,9 +30,12 @@ namespace plumb::viewer {
 namespace {
 
 constexpr float kTriggerPressed = 0.75f, kTriggerReleased = 0.25f;  // hysteresis: one pull, one grow
-// The pick view along a controller's ray: a narrow frustum (2 degrees each side vertically)
-// whose centre pixel is the ray.
-constexpr double kPickHalfAngleRad = 0.035;
+constexpr double kWalkSpeed = 1.5;                                  // stage metres a second, stick full
+constexpr double kSnapTurnRad = M_PI / 6.0;                         // 30 degrees a push
+constexpr double kStickDeadZone = 0.15;
+// The view along a controller's ray: 20 degrees each side vertically, so that the snapping
+// radius (a dozen pixels) is about 1.3 degrees of a hand's aim at the eyes' resolution.
+constexpr double kPointerHalfAngleRad = 0.35;
 
 }  // namespace
 
@@ -64,10 +69,10 @@ void Viewer::startHeadsetSession() {
 
 void Viewer::pollHeadset() {
   if (!xr_session_) return;
-  std::string message;
+  std::vector<std::string> messages;
   try {
-    const xr::SessionState state = xr_session_->poll(message);
-    if (!message.empty()) {
+    const xr::SessionState state = xr_session_->poll(messages);
+    for (const std::string& message : messages) {
       xr_message_ = message;
       std::printf("plumb view: %s\n", message.c_str());
     }
@@ -96,28 +101,41 @@ bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_n
     bool window_presented = false;
     if (frame->should_render) {
       if (!xr_stage_) xr_stage_ = xr::placementAt(cloud_->navigator->camera(), frame->head);
+      moveInHeadset(*frame);
       headsetControllers(*frame);
+      adaptHeadsetBudget(*frame);
       render::RenderSettings eye_settings = settings_;
       eye_settings.clip = clip_.region();
+      eye_settings.selection.point_budget = std::max<std::uint64_t>(
+          50'000, static_cast<std::uint64_t>(static_cast<double>(settings_.selection.point_budget) * xr_budget_share_));
       cloud_->renderer->setOverlay(withClipBox(overlay_.update(scene_.registry())));
       const VkExtent2D extent = xr_session_->eyeExtent();
-      const auto eyeCamera = [&](int eye) {
-        const xr::EyeView& view = frame->eyes[static_cast<std::size_t>(eye)];
-        return xr::eyeCamera(*xr_stage_, view.pose, view.fov, static_cast<int>(extent.width),
-                             static_cast<int>(extent.height));
+      std::array<view::Camera, 2> eyes;
+      for (std::size_t eye = 0; eye < 2; ++eye) {
+        eyes[eye] = xr::eyeCamera(*xr_stage_, frame->eyes[eye].pose, frame->eyes[eye].fov,
+                                  static_cast<int>(extent.width), static_cast<int>(extent.height));
+      }
+      const view::Camera both = xr::bothEyesCamera(eyes[0], eyes[1]);  // one selection, the same detail in each eye
+      const auto timeEye = [&] {
+        if (!options_.profile) return;
+        if (const std::optional<render::GpuTimings> timings = cloud_->renderer->gpuTimings()) {
+          xr_eye_gpu_ms_.push_back(timings->splat_ms + timings->resolve_ms);
+        }
       };
       // The right eye alone, then the left one into its image and the window's.
       const gpu::SwapchainImage right = xr_session_->acquireEye(1);
-      cloud_->renderer->render(eyeCamera(1), eye_settings, render::NodeLoading::kStream, {&right, 1});
+      cloud_->renderer->render(eyes[1], eye_settings, render::NodeLoading::kStream, {&right, 1}, &both);
       xr_session_->releaseEye(1);
+      timeEye();
       const gpu::SwapchainImage left = xr_session_->acquireEye(0);
       const std::optional<gpu::SwapchainImage> window = swapchain_.acquire();
       std::array<gpu::SwapchainImage, 2> images{left, {}};
       if (window) images[1] = *window;
       pending_screenshot_ = window && screenshot && swapchain_.readable();
-      last_stats_ = cloud_->renderer->render(eyeCamera(0), eye_settings, render::NodeLoading::kStream,
-                                             {images.data(), window ? 2u : 1u});
+      last_stats_ = cloud_->renderer->render(eyes[0], eye_settings, render::NodeLoading::kStream,
+                                             {images.data(), window ? 2u : 1u}, &both);
       xr_session_->releaseEye(0);
+      timeEye();
       if (window) {
         swapchain_.present(*window);
         window_presented = true;
@@ -146,40 +164,164 @@ bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_n
   }
 }
 
-// The right controller's trigger, pulled, grows where its ray meets the cloud: the point comes
-// from the visibility buffer of a narrow view along the ray, as the mouse's from the window's.
-void Viewer::headsetControllers(const xr::HeadsetFrame& frame) {
-  const xr::Controller& right = xr_session_->input().controller(xr::Hand::kRight);
-  const bool pulled = right.active && right.aim_valid && right.trigger >= kTriggerPressed;
-  const bool released = !right.active || right.trigger <= kTriggerReleased;
-  const bool fire = pulled && !xr_trigger_held_;
-  if (pulled) xr_trigger_held_ = true;
-  if (released) xr_trigger_held_ = false;
-  if (!fire || scene_.tool().active != Tool::kGrow) return;
+// Moving in the building: the left thumbstick walks where the head faces, the right one turns
+// by steps; a squeeze holds the world (one hand moves and turns it, two also scale it: the
+// model in the hands); B or Y sets the model on a table in front of the user, or back to 1:1
+// where the desktop's view is. Times come from the headset's frame period, so a scripted
+// session moves the same whatever the machine's speed.
+void Viewer::moveInHeadset(const xr::HeadsetFrame& frame) {
+  const xr::Input& input = xr_session_->input();
+  const xr::Controller& left = input.controller(xr::Hand::kLeft);
+  const xr::Controller& right = input.controller(xr::Hand::kRight);
+  const double period_s = static_cast<double>(frame.display_period) * 1e-9;
 
+  const bool secondary = (left.active && left.secondary) || (right.active && right.secondary);
+  if (secondary && !xr_secondary_held_) {
+    xr_model_ = !xr_model_;
+    if (xr_model_) {
+      const lod::Box3& box = cloud_->framing;
+      const Eigen::Vector3d forward = frame.head.orientation * Eigen::Vector3d(0.0, 0.0, -1.0);
+      const Eigen::Vector3d level = Eigen::Vector3d(forward.x(), 0.0, forward.z()).normalized();
+      const Eigen::Vector3d table = frame.head.position + 0.5 * level - Eigen::Vector3d(0.0, 0.5, 0.0);
+      xr_stage_ = xr::modelOnTable(*xr_stage_, {box.min[0], box.min[1], box.min[2]},
+                                   {box.max[0], box.max[1], box.max[2]}, table);
+    } else {
+      xr_stage_ = xr::placementAt(cloud_->navigator->camera(), frame.head);
+    }
+    xr_grab_.reset();
+    xr_message_ = xr_model_ ? "the model on a table (B or Y: back to 1:1)" : "1:1";
+  }
+  xr_secondary_held_ = secondary;
+
+  // Squeezing hands hold the world; a hand joining or leaving starts the hold anew from here.
+  const auto squeezing = [](const xr::Controller& c) {
+    return c.active && c.aim_valid && c.squeeze >= kTriggerPressed;
+  };
+  const int hands = (squeezing(left) ? 1 : 0) | (squeezing(right) ? 2 : 0);
+  if (hands == 0) {
+    xr_grab_.reset();
+  } else {
+    const xr::Hold hold = hands == 3   ? xr::holdOf(left.aim, right.aim)
+                          : hands == 1 ? xr::holdOf(left.aim)
+                                       : xr::holdOf(right.aim);
+    if (!xr_grab_ || xr_grab_->hands != hands) xr_grab_ = HeadsetGrab{hands, *xr_stage_, hold};
+    xr_stage_ = xr::dragged(xr_grab_->start, xr_grab_->from, hold);
+    return;  // held: the sticks wait
+  }
+
+  if (left.active && left.thumbstick.norm() > kStickDeadZone) {
+    const Eigen::Vector3d forward = frame.head.orientation * Eigen::Vector3d(0.0, 0.0, -1.0);
+    const Eigen::Vector3d ahead = Eigen::Vector3d(forward.x(), 0.0, forward.z()).normalized();
+    const Eigen::Vector3d aside(-ahead.z(), 0.0, ahead.x());  // to the right of ahead
+    const Eigen::Vector3d step =
+        kWalkSpeed * period_s * (ahead * double{left.thumbstick.y()} + aside * double{left.thumbstick.x()});
+    xr_stage_ = xr::walked(*xr_stage_, step);
+  }
+  const float turn = right.active ? right.thumbstick.x() : 0.0f;
+  if (std::abs(turn) > 0.7f && !xr_turn_held_) {
+    xr_stage_ = xr::turned(*xr_stage_, frame.head.position, turn > 0.0f ? -kSnapTurnRad : kSnapTurnRad);
+  }
+  if (std::abs(turn) > 0.7f) xr_turn_held_ = true;
+  if (std::abs(turn) < 0.3f) xr_turn_held_ = false;
+}
+
+// The right controller is a pointer as the mouse is: a view along its ray, whose centre pixel
+// it points with, wide enough that the snapping radius in pixels is a comfortable angle for a
+// hand. Its movement is the last aim point's shift in that view. Picking renders that view
+// first, then reads its visibility buffer as a mouse click reads the window's.
+std::optional<PointerView> Viewer::controllerPointer(const xr::HeadsetFrame& frame) {
+  const xr::Controller& right = xr_session_->input().controller(xr::Hand::kRight);
+  if (!right.active || !right.aim_valid) {
+    xr_aim_point_.reset();
+    return std::nullopt;
+  }
   const VkExtent2D extent = xr_session_->eyeExtent();
   const double aspect = static_cast<double>(extent.width) / extent.height;
-  const double vertical = std::tan(kPickHalfAngleRad), horizontal = vertical * aspect;
-  view::Camera along = xr::eyeCamera(
-      *xr_stage_, right.aim, {-std::atan(horizontal), std::atan(horizontal), kPickHalfAngleRad, -kPickHalfAngleRad},
-      static_cast<int>(extent.width), static_cast<int>(extent.height));
-  render::RenderSettings pick_settings = settings_;
-  pick_settings.clip = clip_.region();
-  cloud_->renderer->render(along, pick_settings, render::NodeLoading::kWait);
-  const std::optional<render::PickedPoint> picked =
-      cloud_->renderer->pick(static_cast<int>(extent.width / 2), static_cast<int>(extent.height / 2), 4);
-  if (!picked) {
-    xr_message_ = "the controller points at nothing";
+  const double vertical = std::tan(kPointerHalfAngleRad), horizontal = vertical * aspect;
+  PointerView at;
+  at.camera =
+      xr::eyeCamera(*xr_stage_, right.aim,
+                    {-std::atan(horizontal), std::atan(horizontal), kPointerHalfAngleRad, -kPointerHalfAngleRad},
+                    static_cast<int>(extent.width), static_cast<int>(extent.height));
+  at.pixel = Eigen::Vector2d(0.5 * extent.width, 0.5 * extent.height);
+  if (xr_aim_point_) {
+    if (const std::optional<Eigen::Vector2d> before = view::pixelOf(at.camera, *xr_aim_point_)) {
+      at.motion_px = at.pixel - *before;
+    }
+  }
+  at.pick = [this, camera = at.camera](double x, double y) -> std::optional<Eigen::Vector3d> {
+    render::RenderSettings pick_settings = settings_;
+    pick_settings.clip = clip_.region();
+    last_stats_ = cloud_->renderer->render(camera, pick_settings, render::NodeLoading::kWait);
+    return pickAt(x, y);
+  };
+  // A grow's detail: the left eye's, at the headset's full resolution.
+  const double full = 1.0 / xr_resolution_scale_;
+  at.click_view = {xr::eyeCamera(*xr_stage_, frame.eyes[0].pose, frame.eyes[0].fov, static_cast<int>(extent.width),
+                                 static_cast<int>(extent.height)),
+                   extent.width * full, extent.height * full};
+  return at;
+}
+
+// The right controller: its hover snaps and finds directions every frame; its trigger, pulled,
+// clicks (grows, picks a measurement's term, places a vertex, selects).
+void Viewer::headsetControllers(const xr::HeadsetFrame& frame) {
+  const std::optional<PointerView> at = controllerPointer(frame);
+  const xr::Controller& right = xr_session_->input().controller(xr::Hand::kRight);
+  const bool pulled = at && right.trigger >= kTriggerPressed;
+  const bool fire = pulled && !xr_trigger_held_;
+  if (pulled) xr_trigger_held_ = true;
+  if (!at || right.trigger <= kTriggerReleased) xr_trigger_held_ = false;
+  if (!at) return;
+
+  hoverAt(at);
+  const std::optional<Snap>& hover = scene_.tool().hover;
+  const view::Ray ray = view::rayThroughPixel(at->camera, at->pixel.x(), at->pixel.y());
+  xr_aim_point_ = hover ? hover->position : ray.origin + 2.0 * xr_stage_->scale * ray.direction;
+  if (!fire) return;
+  if (scene_.tool().active == Tool::kGrow) {
+    const std::optional<Eigen::Vector3d> picked = at->pick(at->pixel.x(), at->pixel.y());
+    if (!picked) {
+      xr_message_ = "the controller points at nothing";
+      return;
+    }
+    std::printf("plumb view: the controller grows at (%.3f, %.3f, %.3f)\n", picked->x(), picked->y(), picked->z());
+    startGrow(*picked, at->click_view);
     return;
   }
-  const Eigen::Vector3d point(picked->position[0], picked->position[1], picked->position[2]);
-  // The detail of the eye that sees it, at the headset's full resolution.
-  const xr::EyeView& eye = frame.eyes[0];
-  const double full = 1.0 / xr_resolution_scale_;
-  const view::Camera eye_camera =
-      xr::eyeCamera(*xr_stage_, eye.pose, eye.fov, static_cast<int>(extent.width), static_cast<int>(extent.height));
-  std::printf("plumb view: the controller grows at (%.3f, %.3f, %.3f)\n", point.x(), point.y(), point.z());
-  startGrow(point, {eye_camera, extent.width * full, extent.height * full});
+  click(*at);
+}
+
+// The eyes' point budget follows the frame time towards the headset's period, as a moving
+// desktop view's does towards 30 frames a second; on a script's clock it keeps the whole budget.
+void Viewer::adaptHeadsetBudget(const xr::HeadsetFrame& frame) {
+  const Clock::time_point now = Clock::now();
+  const bool timed = xr_last_frame_ != Clock::time_point{};
+  const double frame_ms = std::chrono::duration<double, std::milli>(now - xr_last_frame_).count();
+  xr_last_frame_ = now;
+  if (!timed) return;
+  xr_frame_ms_.push_back(frame_ms);
+  if (script_ && !options_.script_wall_clock) return;
+  const double period_ms = static_cast<double>(frame.display_period) * 1e-6;
+  if (period_ms <= 0.0) return;
+  const double step = std::clamp(std::sqrt(period_ms / std::max(frame_ms, 1.0)), 0.8, 1.25);
+  xr_budget_share_ = std::clamp(xr_budget_share_ * step, 0.02, 1.0);
+}
+
+void Viewer::reportHeadset() const {
+  if (xr_frame_ms_.empty()) return;
+  const auto median = [](std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+  };
+  std::printf(
+      "plumb view: headset: %zu frames, median %.1f ms a frame (both eyes and the mirror), %.0f%% of the "
+      "point budget at the end\n",
+      xr_frame_ms_.size(), median(xr_frame_ms_), 100.0 * xr_budget_share_);
+  if (!xr_eye_gpu_ms_.empty()) {
+    std::printf("plumb view: headset: GPU time an eye %.1f ms (median of %zu, splat and resolve)\n",
+                median(xr_eye_gpu_ms_), xr_eye_gpu_ms_.size());
+  }
 }
 
 void Viewer::drawHeadsetControls() {

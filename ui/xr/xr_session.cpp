@@ -161,13 +161,13 @@ void Session::destroy() {
   session_ = XR_NULL_HANDLE;
 }
 
-SessionState Session::poll(std::string& message) {
-  message.clear();
+SessionState Session::poll(std::vector<std::string>& messages) {
+  messages.clear();
   auto event = xrStruct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
   while (check(xrPollEvent(runtime_.instance(), &event), "xrPollEvent") == XR_SUCCESS) {
     if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
       state_ = SessionState::kEnded;
-      message = runtime_.name() + " is going away: the headset session ended";
+      messages.push_back(runtime_.name() + " is going away: the headset session ended");
     } else if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
       const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
       switch (changed.state) {
@@ -190,7 +190,7 @@ SessionState Session::poll(std::string& message) {
           break;
       }
       focused_ = changed.state == XR_SESSION_STATE_FOCUSED;
-      message = std::string("headset session ") + stateName(changed.state);
+      messages.push_back(std::string("headset session ") + stateName(changed.state));
     }
     event = xrStruct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
   }

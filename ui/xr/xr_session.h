@@ -68,8 +68,8 @@ class Session {
   Session& operator=(const Session&) = delete;
 
   // Handles the runtime's events: begins and ends the session as it asks. Returns the state
-  // now and, through `message`, what changed in words (empty when nothing did).
-  SessionState poll(std::string& message);
+  // now and, through `messages`, each change in words, oldest first (none when nothing changed).
+  SessionState poll(std::vector<std::string>& messages);
   SessionState state() const { return state_; }
   bool focused() const { return focused_; }
 

@@ -1,0 +1,113 @@
+// frames.jsonl and the captured PNGs (frame_output.h). PNG encoding by stb_image_write, whose
+// implementation is inside Debian's libstb.
+
+#include "tests/support/xr_headset/frame_output.h"
+
+#include <stb_image_write.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+namespace plumb::xr_headset {
+namespace {
+
+std::string padded(std::uint64_t frame) {
+  std::string digits = std::to_string(frame);
+  if (digits.size() < 4) digits.insert(0, 4 - digits.size(), '0');
+  return digits;
+}
+
+}  // namespace
+
+std::string frameJsonLine(const SubmittedFrame& frame) {
+  nlohmann::json views = nlohmann::json::array();
+  for (const SubmittedView& view : frame.views) {
+    const Pose& pose = view.pose;
+    views.push_back({
+        {"pose",
+         {{"position", {pose.position.x, pose.position.y, pose.position.z}},
+          {"orientation", {pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w}}}},
+        {"fov",
+         {{"left", view.fov.angleLeft},
+          {"right", view.fov.angleRight},
+          {"up", view.fov.angleUp},
+          {"down", view.fov.angleDown}}},
+        {"image_rect",
+         {view.image_rect.offset.x, view.image_rect.offset.y, view.image_rect.extent.width,
+          view.image_rect.extent.height}},
+        {"depth", view.depth},
+    });
+  }
+  const nlohmann::json line{{"frame", frame.frame},
+                            {"display_time", frame.display_time},
+                            {"layers", frame.layer_count},
+                            {"views", views},
+                            {"quads", frame.quad_count}};
+  return line.dump();
+}
+
+bool appendFrameLine(const std::string& folder, const std::string& line) {
+  const std::filesystem::path path = std::filesystem::path(folder) / "frames.jsonl";
+  std::ofstream out(path, std::ios::app | std::ios::binary);
+  out << line << '\n';
+  out.flush();
+  if (!out) {
+    std::fprintf(stderr, "simulated headset: cannot append to %s\n", path.c_str());
+    return false;
+  }
+  return true;
+}
+
+std::string eyeImageName(std::uint64_t frame, std::uint32_t eye) {
+  return "frame-" + padded(frame) + "-eye-" + std::to_string(eye) + ".png";
+}
+
+std::string latestEyeImageName(std::uint32_t eye) {
+  std::string name = "latest-eye-";  // appended: GCC 12 -O3 warns (-Wrestrict) on a literal + std::string
+  name += std::to_string(eye);
+  name += ".png";
+  return name;
+}
+
+std::string quadImageName(std::uint64_t frame, std::uint32_t quad) {
+  return "frame-" + padded(frame) + "-quad-" + std::to_string(quad) + ".png";
+}
+
+bool writePng(const std::string& folder, const std::string& name, std::uint32_t width, std::uint32_t height,
+              const std::vector<std::uint8_t>& rgba) {
+  const std::filesystem::path path = std::filesystem::path(folder) / name;
+  const std::filesystem::path temporary = std::filesystem::path(folder) / ("." + name + ".partial");
+  std::vector<char> png;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<char>*>(context);
+    out->insert(out->end(), static_cast<const char*>(data), static_cast<const char*>(data) + size);
+  };
+  const int stride = static_cast<int>(width) * 4;
+  if (stbi_write_png_to_func(append, &png, static_cast<int>(width), static_cast<int>(height), 4, rgba.data(), stride) ==
+      0) {
+    std::fprintf(stderr, "simulated headset: PNG encoding failed for %s\n", path.c_str());
+    return false;
+  }
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(png.data(), static_cast<std::streamsize>(png.size()));
+    out.flush();
+    if (!out) {
+      std::fprintf(stderr, "simulated headset: cannot write %s\n", temporary.c_str());
+      return false;
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::fprintf(stderr, "simulated headset: cannot rename %s to %s: %s\n", temporary.c_str(), path.c_str(),
+                 error.message().c_str());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace plumb::xr_headset

@@ -1,0 +1,293 @@
+// The viewer in a headset, end to end, with no headset: `plumb view --xr` under Xvfb, on
+// lavapipe with validation on, its OpenXR runtime the simulated headset of tests/support/xr_headset
+// (loaded by Khronos' loader through XR_RUNTIME_JSON), which plays a script of head and controller
+// poses and writes every eye image it is given to PNG.
+//
+// The room of the simulator (7 x 5 x 2.5 m): the user stands in its middle facing the x+ wall,
+// a 30 cm square drawn 10 cm in front of that wall (a project's polygon); the right controller
+// points at the wall and pulls the trigger, first while the session is not focused (nothing may
+// happen), then focused: the wall grows. Both eyes show it, and the square's shift between the
+// eyes is the one their poses and frusta imply.
+//
+// PLUMB_TEST_SCREENSHOTS=DIR keeps the eye images there for a person to look at.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "engine/io/png_image.h"
+#include "engine/view/camera.h"
+#include "engine/view/camera_controls.h"
+#include "tests/support/temp_directory.h"
+#include "tests/ui/viewer_session.h"
+#include "ui/xr/stage.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using plumb::test::jsonPoint;
+using plumb::test::readJson;
+using plumb::test::vector3;
+
+const Eigen::Vector3d kOffset(512000.0, 5403000.0, 250.0);                  // the room's corner, UTM-like
+const Eigen::Vector3d kStandAt = kOffset + Eigen::Vector3d(3.5, 2.5, 1.6);  // the eyes, facing +x
+const Eigen::Vector3d kSquareCentre = kOffset + Eigen::Vector3d(6.9, 2.5, 1.7);
+constexpr double kSquareHalf = 0.15;
+constexpr int kEyeWidth = 480, kEyeHeight = 360;
+
+// The room, simulated once for every test of this file.
+class Headset : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    room_ = new plumb::test::TempDirectory("plumb_Headset_room");
+    const std::string simulate = std::string("'") + PLUMB_BINARY +
+                                 "' simulate --scene room --points 200000 --noise-mm 2 --seed 3 "
+                                 "--offset 512000,5403000,250 -o '" +
+                                 room_->file("room.ply") + "' >/dev/null && '" + PLUMB_BINARY + "' import '" +
+                                 room_->file("room.ply") + "' -o '" + room_->file("room.plumb") + "' >/dev/null";
+    ASSERT_EQ(std::system(simulate.c_str()), 0);
+  }
+  static void TearDownTestSuite() {
+    delete room_;
+    room_ = nullptr;
+  }
+
+  // The desktop's view (where the headset's stage is placed) and a project with the square.
+  static std::string viewAndProject(const plumb::test::TempDirectory& dir) {
+    std::ofstream(dir.file("camera.json")) << json{
+        {"format", "plumb-camera"},
+        {"version", 1},
+        {"position", jsonPoint(kStandAt)},
+        {"target", jsonPoint(kStandAt + Eigen::Vector3d(3.0, 0.0, 0.0))},
+        {"fov_deg", 70},
+        {"viewport", {1280, 720}}}.dump();
+    json square = json::array();
+    for (const auto& [dy, dz] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+      square.push_back(jsonPoint(kSquareCentre + kSquareHalf * Eigen::Vector3d(0.0, dy, dz)));
+    }
+    std::ofstream(dir.file("room.plumbproj")) << json{
+        {"format", "plumb-project"},
+        {"version", 2},
+        {"cloud", room_->file("room.plumb")},
+        {"polygons",
+         {{{"id", 1},
+           {"name", "marker"},
+           {"group", 0},
+           {"plane", 0},
+           {"vertices", square},
+           {"extrusion", {0.0, 0.0, 0.0}}}}}}.dump();
+    return "'" + room_->file("room.plumb") + "' --xr --xr-resolution 1 --project '" + dir.file("room.plumbproj") +
+           "' --camera '" + dir.file("camera.json") + "'";
+  }
+
+  static std::string headsetEnvironment(const plumb::test::TempDirectory& dir, const json& script) {
+    std::ofstream(dir.file("headset.json")) << script.dump(1);
+    fs::create_directories(dir.file("eyes"));
+    return std::string("XR_RUNTIME_JSON='") + PLUMB_XR_HEADSET_MANIFEST + "' PLUMB_XR_HEADSET_SCRIPT='" +
+           dir.file("headset.json") + "' PLUMB_XR_HEADSET_OUT='" + dir.file("eyes") + "'";
+  }
+
+  static plumb::test::TempDirectory* room_;
+};
+
+plumb::test::TempDirectory* Headset::room_ = nullptr;
+
+json pose(const Eigen::Vector3d& position, const Eigen::Vector3d& look_at) {
+  return {{"position", jsonPoint(position)}, {"look_at", jsonPoint(look_at)}};
+}
+
+// The horizontal centre of the square's white rim in an eye's image; nothing when absent.
+std::optional<double> rimCentreX(const plumb::io::RgbaImage& image) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint32_t p = image.pixel(x, y);
+      if ((p & 0xFFu) >= 250 && (p >> 8 & 0xFFu) >= 250 && (p >> 16 & 0xFFu) >= 250) {
+        sum += x + 0.5;
+        ++count;
+      }
+    }
+  }
+  if (count < 20) return std::nullopt;
+  return sum / static_cast<double>(count);
+}
+
+plumb::xr::Pose poseFromJson(const json& value) {
+  plumb::xr::Pose pose;
+  pose.position = vector3(value.at("position"));
+  const json& q = value.at("orientation");
+  pose.orientation = Eigen::Quaterniond(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+  return pose;
+}
+
+double differingShare(const plumb::io::RgbaImage& a, const plumb::io::RgbaImage& b) {
+  std::size_t differing = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) differing += a.pixel(x, y) != b.pixel(x, y);
+  }
+  return static_cast<double>(differing) / (static_cast<double>(a.width) * a.height);
+}
+
+TEST_F(Headset, TheTriggerGrowsTheWallItPointsAtAndBothEyesShowIt) {
+  const plumb::test::TempDirectory dir;
+  // The stage: the head at 1.6 m looking down -z; -z is the desktop view's +x here, and the
+  // stage's +x the world's -y. The controller, at the right hip, points at the wall 30 cm
+  // right of and 50 cm below the square.
+  const Eigen::Vector3d head(0.0, 1.6, 0.0);
+  const json right = {{"aim", pose({0.2, 1.2, -0.3}, {0.3, 1.2, -3.5})}, {"trigger", 0.0}};
+  json pulled = right;
+  pulled["trigger"] = 1.0;
+  const json script = {
+      {"refresh_hz", 90},
+      {"eye_size", {kEyeWidth, kEyeHeight}},
+      {"ipd_m", 0.064},
+      {"fov_deg", {{"left", -45}, {"right", 40}, {"up", 38}, {"down", -42}}},
+      {"capture", {12}},
+      {"capture_latest", true},
+      {"after_last_frame", "hold"},
+      {"frames",
+       {{{"repeat", 10}, {"head", {{"position", jsonPoint(head)}, {"orientation", {0, 0, 0, 1}}}}, {"right", right}},
+        {{"repeat", 5}, {"event", "unfocus"}, {"right", pulled}},  // not focused: no input reaches Plumb
+        {{"repeat", 5}, {"event", "focus"}, {"right", right}},
+        {{"repeat", 5}, {"right", pulled}},
+        {{"repeat", 10}, {"right", right}}}}};
+  const json steps = json::array({
+      {{"tool", "grow"}},
+      {{"wait", "frames"}, {"count", 40}},
+      {{"wait", "grower_idle"}, {"timeout_s", 300}},
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 3}},
+      {{"screenshot", "mirror.png"}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, 1280, 720, headsetEnvironment(dir, script)),
+            0);
+  const std::string log = plumb::test::viewerLog(dir);
+  EXPECT_NE(log.find("headset session focused"), std::string::npos) << log;
+
+  // One grow, from the focused pull, on the x+ wall.
+  const json dump = readJson(dir.file("scene.json"));
+  std::size_t on_wall = 0;
+  for (const json& segment : dump.at("segments")) {
+    const Eigen::Vector3d normal = vector3(segment.at("normal"));
+    const Eigen::Vector3d centroid = vector3(segment.at("centroid"));
+    if (std::abs(normal.x()) > 0.999 && std::abs(centroid.x() - (kOffset.x() + 7.0)) < 0.01) ++on_wall;
+  }
+  EXPECT_EQ(on_wall, 1u) << dump.dump(1);
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n') > 0 ? log.find("the controller grows at") : std::string::npos,
+            log.rfind("the controller grows at"))
+      << "one pull, one grow (the unfocused pull must do nothing)\n"
+      << log;
+
+  // Both eyes changed where the wall grew: before the pull (frame 12) and at the end.
+  const std::array<std::string, 2> before{dir.file("eyes/frame-0012-eye-0.png"), dir.file("eyes/frame-0012-eye-1.png")};
+  const std::array<std::string, 2> after{dir.file("eyes/latest-eye-0.png"), dir.file("eyes/latest-eye-1.png")};
+  std::array<plumb::io::RgbaImage, 2> last;
+  for (std::size_t eye = 0; eye < 2; ++eye) {
+    const plumb::io::RgbaImage first = plumb::io::readPng(before[eye]);
+    last[eye] = plumb::io::readPng(after[eye]);
+    ASSERT_EQ(last[eye].width, kEyeWidth);
+    ASSERT_EQ(last[eye].height, kEyeHeight);
+    EXPECT_GT(differingShare(first, last[eye]), 0.05) << "eye " << eye << ": the grown wall does not show";
+  }
+
+  // The square's shift between the eyes, against its projection by each eye's camera: the
+  // stage placed where the desktop camera was, the eyes where the runtime located them for the
+  // last frame (frames.jsonl), each with its own off-axis frustum.
+  std::ifstream frames(dir.file("eyes/frames.jsonl"));
+  std::string line, last_line;
+  while (std::getline(frames, line)) {
+    if (!line.empty()) last_line = line;
+  }
+  const json views = json::parse(last_line).at("views");
+  ASSERT_EQ(views.size(), 2u);
+  plumb::view::Camera desktop;
+  desktop.position = kStandAt;
+  desktop.target = kStandAt + Eigen::Vector3d(3.0, 0.0, 0.0);
+  plumb::xr::Pose head_pose;
+  head_pose.position = head;
+  const plumb::xr::StagePlacement stage = plumb::xr::placementAt(desktop, head_pose);
+  std::array<double, 2> expected_x{}, measured_x{};
+  for (std::size_t eye = 0; eye < 2; ++eye) {
+    const json& fov = views[eye].at("fov");
+    const plumb::view::Camera camera =
+        plumb::xr::eyeCamera(stage, poseFromJson(views[eye].at("pose")),
+                             {fov.at("left").get<double>(), fov.at("right").get<double>(), fov.at("up").get<double>(),
+                              fov.at("down").get<double>()},
+                             kEyeWidth, kEyeHeight);
+    const std::optional<Eigen::Vector2d> pixel = plumb::view::pixelOf(camera, kSquareCentre);
+    ASSERT_TRUE(pixel);
+    expected_x[eye] = pixel->x();
+    const std::optional<double> rim = rimCentreX(last[eye]);
+    ASSERT_TRUE(rim) << "eye " << eye << ": the square's rim is not in the image";
+    measured_x[eye] = *rim;
+  }
+  const double expected = expected_x[0] - expected_x[1], measured = measured_x[0] - measured_x[1];
+  std::printf("disparity of the square: expected %.2f px, measured %.2f px (left %.2f / %.2f, right %.2f / %.2f)\n",
+              expected, measured, expected_x[0], measured_x[0], expected_x[1], measured_x[1]);
+  EXPECT_GT(expected, 3.0) << "the test's geometry should give a visible disparity";
+  EXPECT_NEAR(measured, expected, 1.0);
+  EXPECT_NEAR(measured_x[0], expected_x[0], 1.5) << "the left eye's square is not where its camera puts it";
+
+  if (const char* keep = std::getenv("PLUMB_TEST_SCREENSHOTS")) {
+    fs::create_directories(keep);
+    for (std::size_t eye = 0; eye < 2; ++eye) {
+      fs::copy_file(after[eye], fs::path(keep) / ("xr-eye-" + std::to_string(eye) + ".png"),
+                    fs::copy_options::overwrite_existing);
+    }
+  }
+  plumb::test::keepScreenshots(dir);
+}
+
+// The runtime ends the session (the user took the headset off and chose to leave): the viewer
+// ends it cleanly and goes on on the desktop.
+TEST_F(Headset, ASessionTheRuntimeEndsLeavesTheDesktopGoingOn) {
+  const plumb::test::TempDirectory dir;
+  const json script = {
+      {"eye_size", {160, 120}},
+      {"capture", "none"},
+      {"after_last_frame", "exit"},
+      {"frames", {{{"repeat", 8}, {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}}}}}};
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 30}},
+      {{"screenshot", "desktop.png"}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, 640, 400, headsetEnvironment(dir, script)),
+            0);
+  const std::string log = plumb::test::viewerLog(dir);
+  for (const char* said :
+       {"headset session on Plumb simulated headset", "headset session focused", "headset session stopping",
+        "headset session exiting", "the headset session ended; the desktop goes on"}) {
+    EXPECT_NE(log.find(said), std::string::npos) << said << "\n" << log;
+  }
+  EXPECT_TRUE(fs::exists(dir.file("shots/desktop.png")));
+}
+
+// No runtime: one message, and the desktop as usual.
+TEST_F(Headset, WithoutARuntimeTheViewerSaysSoAndGoesOnOnTheDesktop) {
+  const plumb::test::TempDirectory dir;
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"screenshot", "desktop.png"}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, 640, 400,
+                                          "XR_RUNTIME_JSON='" + dir.file("no-such-runtime.json") + "'"),
+            0);
+  const std::string log = plumb::test::viewerLog(dir);
+  EXPECT_NE(log.find("plumb view: no headset: no OpenXR runtime answered"), std::string::npos) << log;
+  EXPECT_EQ(log.find("OpenXR-Loader"), std::string::npos) << "one message, not the loader's too\n" << log;
+  EXPECT_TRUE(fs::exists(dir.file("shots/desktop.png")));
+}
+
+}  // namespace
