@@ -23,6 +23,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "engine/io/png_image.h"
 #include "engine/view/camera.h"
@@ -86,8 +87,15 @@ class Headset : public ::testing::Test {
            {"plane", 0},
            {"vertices", square},
            {"extrusion", {0.0, 0.0, 0.0}}}}}}.dump();
-    return "'" + room_->file("room.plumb") + "' --xr --xr-resolution 1 --project '" + dir.file("room.plumbproj") +
-           "' --camera '" + dir.file("camera.json") + "'";
+    // Built by appending: GCC 12 -O3 warns (-Wrestrict) on "'" + std::string.
+    std::string arguments = "'";
+    arguments += room_->file("room.plumb");
+    arguments += "' --xr --xr-resolution 1 --project '";
+    arguments += dir.file("room.plumbproj");
+    arguments += "' --camera '";
+    arguments += dir.file("camera.json");
+    arguments += "'";
+    return arguments;
   }
 
   static std::string headsetEnvironment(const plumb::test::TempDirectory& dir, const json& script) {
@@ -247,6 +255,71 @@ TEST_F(Headset, TheTriggerGrowsTheWallItPointsAtAndBothEyesShowIt) {
     }
   }
   plumb::test::keepScreenshots(dir);
+}
+
+// The pixel sizes the viewer reports for the controller's grows, in order.
+std::vector<double> grownPixelsMm(const std::string& log) {
+  std::vector<double> pixels;
+  std::istringstream lines(log);
+  std::string line;
+  const std::string said = "a pixel ";
+  while (std::getline(lines, line)) {
+    if (line.find("the controller grows at") == std::string::npos) continue;
+    const std::size_t at = line.find(said);
+    if (at != std::string::npos) pixels.push_back(std::stod(line.substr(at + said.size())));
+  }
+  return pixels;
+}
+
+// Scale sets a click's detail as zoom does on the desktop: the same wall, pointed at from where
+// the user stands, from 0.75 m nearer after walking with the thumbstick, and in the model on a
+// table (B), grows with a pixel the size the left eye sees there.
+TEST_F(Headset, WalkingNearerGrowsFinerAndTheModelOnATableCoarser) {
+  const plumb::test::TempDirectory dir;
+  const json aim = pose({0.2, 1.2, -0.3}, {0.0, 1.2, -3.5});
+  const json still = {{"aim", aim}, {"trigger", 0.0}, {"thumbstick", {0.0, 0.0}}, {"b", false}};
+  json pulled = still, walking = still, b_pressed = still;
+  pulled["trigger"] = 1.0;
+  walking["thumbstick"] = {0.0, 1.0};
+  b_pressed["b"] = true;
+  const json left_walking = {{"thumbstick", {0.0, 1.0}}};
+  const json left_still = {{"thumbstick", {0.0, 0.0}}};
+  const json script = {{"eye_size", {kEyeWidth, kEyeHeight}},
+                       {"fov_deg", {{"left", -45}, {"right", 40}, {"up", 38}, {"down", -42}}},
+                       {"capture", "none"},
+                       {"after_last_frame", "hold"},
+                       {"frames",
+                        {{{"repeat", 10},
+                          {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}},
+                          {"right", still},
+                          {"left", left_still}},
+                         {{"repeat", 5}, {"right", pulled}},
+                         {{"repeat", 10}, {"right", still}},
+                         {{"repeat", 45}, {"left", left_walking}},  // 45 frames at 90 Hz, full stick: 0.75 m
+                         {{"repeat", 10}, {"left", left_still}},
+                         {{"repeat", 5}, {"right", pulled}},
+                         {{"repeat", 10}, {"right", still}},
+                         {{"repeat", 5}, {"right", b_pressed}},  // the model on a table
+                         {{"repeat", 10}, {"right", still}},
+                         {{"repeat", 5}, {"right", pulled}},
+                         {{"repeat", 10}, {"right", still}}}}};
+  const json steps = json::array({
+      {{"tool", "grow"}},
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 140}},
+      {{"wait", "grower_idle"}, {"timeout_s", 300}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, 640, 400, headsetEnvironment(dir, script)),
+            0);
+  const std::string log = plumb::test::viewerLog(dir);
+  const std::vector<double> pixels = grownPixelsMm(log);
+  ASSERT_EQ(pixels.size(), 3u) << log;
+  std::printf("a pixel at the grows: %.2f mm (1:1), %.2f mm (0.75 m nearer), %.2f mm (the model)\n", pixels[0],
+              pixels[1], pixels[2]);
+  // The left eye 3.5 m from the wall, then 2.75 m; a pixel's size follows the depth.
+  EXPECT_NEAR(pixels[1] / pixels[0], 2.75 / 3.5, 0.02) << log;
+  // The model: the room 7 m long on 60 cm of table, its wall 0.8 m (stage) from the eyes.
+  EXPECT_GT(pixels[2], 2.0 * pixels[0]) << log;
 }
 
 // The runtime ends the session (the user took the headset off and chose to leave): the viewer

@@ -285,15 +285,19 @@ void Viewer::headsetControllers(const xr::HeadsetFrame& frame) {
       xr_message_ = "the controller points at nothing";
       return;
     }
-    std::printf("plumb view: the controller grows at (%.3f, %.3f, %.3f)\n", picked->x(), picked->y(), picked->z());
     startGrow(*picked, at->click_view);
+    if (grow_panel_.last) {
+      std::printf("plumb view: the controller grows at (%.3f, %.3f, %.3f), a pixel %.2f mm there\n", picked->x(),
+                  picked->y(), picked->z(), grow_panel_.last->pixel_size_m * 1e3);
+    }
     return;
   }
   click(*at);
 }
 
 // The eyes' point budget follows the frame time towards the headset's period, as a moving
-// desktop view's does towards 30 frames a second; on a script's clock it keeps the whole budget.
+// desktop view's does towards 30 frames a second; on a script's clock, or with
+// --fixed-quality, it keeps the whole budget.
 void Viewer::adaptHeadsetBudget(const xr::HeadsetFrame& frame) {
   const Clock::time_point now = Clock::now();
   const bool timed = xr_last_frame_ != Clock::time_point{};
@@ -301,7 +305,7 @@ void Viewer::adaptHeadsetBudget(const xr::HeadsetFrame& frame) {
   xr_last_frame_ = now;
   if (!timed) return;
   xr_frame_ms_.push_back(frame_ms);
-  if (script_ && !options_.script_wall_clock) return;
+  if ((script_ && !options_.script_wall_clock) || !adaptive_quality_) return;
   const double period_ms = static_cast<double>(frame.display_period) * 1e-6;
   if (period_ms <= 0.0) return;
   const double step = std::clamp(std::sqrt(period_ms / std::max(frame_ms, 1.0)), 0.8, 1.25);
@@ -314,10 +318,13 @@ void Viewer::reportHeadset() const {
     std::sort(values.begin(), values.end());
     return values[values.size() / 2];
   };
+  const double frame_ms = median(xr_frame_ms_);
+  const auto budget =
+      static_cast<unsigned long long>(static_cast<double>(settings_.selection.point_budget) * xr_budget_share_);
   std::printf(
-      "plumb view: headset: %zu frames, median %.1f ms a frame (both eyes and the mirror), %.0f%% of the "
-      "point budget at the end\n",
-      xr_frame_ms_.size(), median(xr_frame_ms_), 100.0 * xr_budget_share_);
+      "plumb view: headset: %zu frames, median %.1f ms a frame (%.1f Hz; both eyes and the mirror), budget "
+      "%llu points at the end, %s\n",
+      xr_frame_ms_.size(), frame_ms, 1e3 / frame_ms, budget, device_.name().c_str());
   if (!xr_eye_gpu_ms_.empty()) {
     std::printf("plumb view: headset: GPU time an eye %.1f ms (median of %zu, splat and resolve)\n",
                 median(xr_eye_gpu_ms_), xr_eye_gpu_ms_.size());
