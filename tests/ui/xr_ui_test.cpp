@@ -30,6 +30,7 @@
 #include "engine/view/camera_controls.h"
 #include "tests/support/temp_directory.h"
 #include "tests/ui/viewer_session.h"
+#include "ui/xr/hand_panel.h"
 #include "ui/xr/stage.h"
 
 namespace {
@@ -320,6 +321,73 @@ TEST_F(Headset, WalkingNearerGrowsFinerAndTheModelOnATableCoarser) {
   EXPECT_NEAR(pixels[1] / pixels[0], 2.75 / 3.5, 0.02) << log;
   // The model: the room 7 m long on 60 cm of table, its wall 0.8 m (stage) from the eyes.
   EXPECT_GT(pixels[2], 2.0 * pixels[0]) << log;
+}
+
+// The palette in the left hand: the right controller picks Measure on it, then measures the
+// wall between two points 60 cm apart, a pull at each, as the mouse would on the desktop.
+TEST_F(Headset, ThePaletteInTheLeftHandPicksATool) {
+  const plumb::test::TempDirectory dir;
+  constexpr int kWindowWidth = 1280, kWindowHeight = 720;
+  plumb::xr::Pose left_hand;
+  left_hand.position = {-0.15, 1.25, -0.35};  // held up, pointing forward (identity: down -z)
+  const plumb::xr::HandPanel panel =
+      plumb::xr::panelOnHand(left_hand, static_cast<double>(kWindowWidth) / kWindowHeight);
+  // The Tools panel's Measure entry, at this window pixel of the palette (its layout is fixed).
+  const Eigen::Vector2d measure_px(65.0, 92.0);
+  const Eigen::Vector3d on_panel =
+      panel.pose.position +
+      panel.pose.orientation * Eigen::Vector3d((measure_px.x() / kWindowWidth - 0.5) * panel.width_m,
+                                               (0.5 - measure_px.y() / kWindowHeight) * panel.height_m, 0.0);
+  const Eigen::Vector3d right_hand(0.2, 1.3, -0.1);
+  const json left = {{"aim", pose(left_hand.position, left_hand.position + Eigen::Vector3d(0.0, 0.0, -1.0))}};
+  const auto right = [&](const Eigen::Vector3d& at, double trigger) {
+    return json{{"aim", pose(right_hand, at)}, {"trigger", trigger}};
+  };
+  const Eigen::Vector3d point_a(0.3, 1.2, -3.5), point_b(-0.3, 1.2, -3.5);  // on the wall, 0.6 m apart
+  const json script = {{"eye_size", {320, 240}},
+                       {"capture", {30}},
+                       {"after_last_frame", "hold"},
+                       {"frames",
+                        {{{"repeat", 20},
+                          {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}},
+                          {"left", left},
+                          {"right", right(on_panel, 0.0)}},
+                         {{"repeat", 5}, {"right", right(on_panel, 1.0)}},
+                         {{"repeat", 10}, {"right", right(on_panel, 0.0)}},
+                         {{"repeat", 10}, {"right", right(point_a, 0.0)}},
+                         {{"repeat", 5}, {"right", right(point_a, 1.0)}},
+                         {{"repeat", 10}, {"right", right(point_a, 0.0)}},
+                         {{"repeat", 10}, {"right", right(point_b, 0.0)}},
+                         {{"repeat", 5}, {"right", right(point_b, 1.0)}},
+                         {{"repeat", 10}, {"right", right(point_b, 0.0)}}}}};
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 110}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, kWindowWidth, kWindowHeight,
+                                          headsetEnvironment(dir, script)),
+            0);
+  const std::string log = plumb::test::viewerLog(dir);
+  EXPECT_EQ(log.find("the controller grows at"), std::string::npos) << "the panel's click reached the scene\n" << log;
+  const json measurements = readJson(dir.file("scene.json")).at("measurements");
+  ASSERT_EQ(measurements.size(), 1u) << measurements.dump(1) << "\n" << log;
+  EXPECT_EQ(measurements[0].at("kind"), "distance");
+  // Each end is the cloud's point nearest the ray (an exact point of the scan, as a mouse click
+  // picks): within the room's point spacing, about 2.5 cm at 200,000 points, of where it aims.
+  EXPECT_NEAR(measurements[0].at("value").get<double>(), 0.6, 0.05) << measurements.dump(1);
+  // The panel went to the compositor as a quad over the eyes: the palette, not an empty image.
+  const plumb::io::RgbaImage quad = plumb::io::readPng(dir.file("eyes/frame-0030-quad-0.png"));
+  EXPECT_EQ(quad.width, kWindowWidth);
+  std::size_t drawn = 0;
+  for (int y = 0; y < quad.height; ++y) {
+    for (int x = 0; x < quad.width; ++x) drawn += (quad.pixel(x, y) >> 24) != 0;
+  }
+  EXPECT_GT(static_cast<double>(drawn) / (quad.width * quad.height), 0.1) << "the palette is not on the panel";
+  if (const char* keep = std::getenv("PLUMB_TEST_SCREENSHOTS")) {
+    fs::create_directories(keep);
+    fs::copy_file(dir.file("eyes/frame-0030-quad-0.png"), fs::path(keep) / "xr-panel.png",
+                  fs::copy_options::overwrite_existing);
+  }
 }
 
 // The runtime ends the session (the user took the headset off and chose to leave): the viewer

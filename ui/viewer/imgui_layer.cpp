@@ -23,7 +23,10 @@ void checkImgui(VkResult result) {
   gpu::check(result, "Dear ImGui's Vulkan backend");
 }
 
-VkRenderPass createRenderPass(VkDevice device, VkFormat format) {
+// One pass for the window (loading the cloud the renderer copied in, leaving the image ready to
+// present) and one for a headset's panel (loading its cleared image, leaving it for the
+// runtime): compatible passes, so that the backend's one pipeline draws in both.
+VkRenderPass createRenderPass(VkDevice device, VkFormat format, VkImageLayout final_layout) {
   VkAttachmentDescription colour{};
   colour.format = format;
   colour.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -32,7 +35,7 @@ VkRenderPass createRenderPass(VkDevice device, VkFormat format) {
   colour.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
   colour.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   colour.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  colour.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  colour.finalLayout = final_layout;
   const VkAttachmentReference reference{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -107,7 +110,8 @@ ImguiLayer::ImguiLayer(const gpu::Instance& instance, const gpu::Device& device,
   pool.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
   pool.pPoolSizes = sizes.data();
   gpu::check(vkCreateDescriptorPool(device.handle(), &pool, nullptr, &descriptors_), "vkCreateDescriptorPool");
-  render_pass_ = createRenderPass(device.handle(), swapchain.format());
+  render_pass_ = createRenderPass(device.handle(), swapchain.format(), VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+  panel_pass_ = createRenderPass(device.handle(), swapchain.format(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 
   ImGui_ImplVulkan_InitInfo init{};
   init.Instance = instance.handle();
@@ -118,7 +122,9 @@ ImguiLayer::ImguiLayer(const gpu::Instance& instance, const gpu::Device& device,
   init.DescriptorPool = descriptors_;
   init.Subpass = 0;
   init.MinImageCount = 2;
-  init.ImageCount = std::max<std::uint32_t>(2, swapchain.imageCount());
+  // The backend's ring of vertex buffers, one a draw: the window's image and a headset's panel
+  // each draw a frame's interface, and frames overlap on the GPU; 8 outlasts both.
+  init.ImageCount = std::max<std::uint32_t>(8, swapchain.imageCount());
   init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   init.CheckVkResultFn = checkImgui;
   if (!ImGui_ImplVulkan_Init(&init, render_pass_)) throw Error("Dear ImGui's Vulkan backend failed to start");
@@ -138,6 +144,7 @@ ImguiLayer::~ImguiLayer() {
   ImGui::DestroyContext();
   destroyTargets();
   vkDestroyRenderPass(device_.handle(), render_pass_, nullptr);
+  vkDestroyRenderPass(device_.handle(), panel_pass_, nullptr);
   vkDestroyDescriptorPool(device_.handle(), descriptors_, nullptr);
 }
 
@@ -194,9 +201,10 @@ void ImguiLayer::endFrame() {
 void ImguiLayer::record(VkCommandBuffer commands, const gpu::SwapchainImage& image) {
   assert(frame_ended_ && "call endFrame() before the renderer presents");
   const Target& target = targetFor(image);
+  const bool panel = image.presented_layout == VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   VkRenderPassBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-  begin.renderPass = render_pass_;
+  begin.renderPass = panel ? panel_pass_ : render_pass_;
   begin.framebuffer = target.framebuffer;
   begin.renderArea.extent = target.extent;
   vkCmdBeginRenderPass(commands, &begin, VK_SUBPASS_CONTENTS_INLINE);

@@ -41,7 +41,8 @@ class ImguiLayer {
   void endFrame();
 
   // The renderer's present hook: draws the frame's interface into `image` (arriving in
-  // TRANSFER_DST_OPTIMAL) and leaves it in PRESENT_SRC_KHR.
+  // TRANSFER_DST_OPTIMAL) and leaves it in its presented_layout: PRESENT_SRC_KHR for the
+  // window's, COLOR_ATTACHMENT_OPTIMAL for a headset's panel (of the window's format).
   void record(VkCommandBuffer commands, const gpu::SwapchainImage& image);
 
  private:
@@ -57,6 +58,7 @@ class ImguiLayer {
   const gpu::Swapchain& swapchain_;
   VkDescriptorPool descriptors_ = VK_NULL_HANDLE;
   VkRenderPass render_pass_ = VK_NULL_HANDLE;
+  VkRenderPass panel_pass_ = VK_NULL_HANDLE;
   std::unordered_map<VkImage, Target> targets_;  // per swapchain image, dropped when it is rebuilt
   std::uint64_t targets_rebuild_ = 0;            // Swapchain::rebuilds() the targets were made for
   bool frame_ended_ = false;

@@ -36,6 +36,7 @@
 #include "ui/viewer/snapping.h"
 #include "ui/viewer/viewer_app.h"
 #include "ui/viewer/window.h"
+#include "ui/xr/hand_panel.h"
 #include "ui/xr/stage.h"
 
 namespace plumb::lod {
@@ -162,6 +163,9 @@ class Viewer {
   std::optional<PointerView> controllerPointer(const xr::HeadsetFrame& frame);
   void headsetControllers(const xr::HeadsetFrame& frame);
   void moveInHeadset(const xr::HeadsetFrame& frame);
+  void placeHeadsetPanel();
+  bool pointAtHeadsetPanel();
+  void drawHeadsetPanel();
   void adaptHeadsetBudget(const xr::HeadsetFrame& frame);
   void drawHeadsetControls();
   void reportHeadset() const;
@@ -226,9 +230,15 @@ class Viewer {
   double xr_resolution_scale_ = 1.0;
   bool xr_trigger_held_ = false;
   std::optional<Eigen::Vector3d> xr_aim_point_;  // what the right controller aimed at last frame
-  bool xr_turn_held_ = false;                    // the right thumbstick, pushed aside: one snap turn a push
-  bool xr_secondary_held_ = false;               // B or Y: one toggle between 1:1 and the model a press
-  bool xr_model_ = false;                        // the model on a table (else 1:1)
+  // The palette on a panel in the left hand (while it is tracked), and the mouse events the right
+  // controller makes on it, for the palette's next frame.
+  std::optional<xr::HandPanel> xr_panel_;
+  std::vector<InputEvent> xr_panel_events_;
+  bool xr_panel_pressed_ = false;
+  bool xr_panel_unavailable_said_ = false;
+  bool xr_turn_held_ = false;       // the right thumbstick, pushed aside: one snap turn a push
+  bool xr_secondary_held_ = false;  // B or Y: one toggle between 1:1 and the model a press
+  bool xr_model_ = false;           // the model on a table (else 1:1)
   // The hands squeezing the world (bit 0 left, bit 1 right), the placement and hold they began with.
   struct HeadsetGrab {
     int hands = 0;

@@ -45,6 +45,8 @@ int Viewer::run() {
     if (script_ && !playScriptFrame(events, screenshot)) break;
 
     for (const InputEvent& event : events) imgui_.feed(event);
+    for (const InputEvent& event : xr_panel_events_) imgui_.feed(event);  // the controller on the palette's panel
+    xr_panel_events_.clear();
     jobs_.drainContinuations();  // grow snapshots into the scene, a finished import
     pollHeadset();
 

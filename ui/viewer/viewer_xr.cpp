@@ -11,6 +11,9 @@
 
 #include <imgui.h>
 
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -18,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "engine/gpu/commands.h"
 #include "engine/render/point_renderer.h"
 #include "ui/viewer/imgui_layer.h"
 #include "ui/viewer/viewer.h"
@@ -102,7 +106,8 @@ bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_n
     if (frame->should_render) {
       if (!xr_stage_) xr_stage_ = xr::placementAt(cloud_->navigator->camera(), frame->head);
       moveInHeadset(*frame);
-      headsetControllers(*frame);
+      placeHeadsetPanel();
+      if (!pointAtHeadsetPanel()) headsetControllers(*frame);
       adaptHeadsetBudget(*frame);
       render::RenderSettings eye_settings = settings_;
       eye_settings.clip = clip_.region();
@@ -142,7 +147,8 @@ bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_n
       }
       rendered = true;
     }
-    xr_session_->endFrame(*frame, rendered);
+    if (rendered && xr_panel_) drawHeadsetPanel();
+    xr_session_->endFrame(*frame, rendered, rendered && xr_panel_ ? &*xr_panel_ : nullptr);
     if (screenshot) {
       if (!pending_screenshot_) {
         std::fprintf(stderr, "plumb view: no screenshot of this headset frame (not rendered or not readable)\n");
@@ -223,6 +229,68 @@ void Viewer::moveInHeadset(const xr::HeadsetFrame& frame) {
   }
   if (std::abs(turn) > 0.7f) xr_turn_held_ = true;
   if (std::abs(turn) < 0.3f) xr_turn_held_ = false;
+}
+
+// The palette on a panel above the left hand, the window's size in pixels, while that hand is
+// tracked and the runtime takes the window's format for it.
+void Viewer::placeHeadsetPanel() {
+  xr_panel_.reset();
+  const xr::Controller& left = xr_session_->input().controller(xr::Hand::kLeft);
+  const VkExtent2D size = window_.framebufferSize();
+  if (!left.active || !left.aim_valid || size.width == 0 || size.height == 0) return;
+  if (!xr_session_->preparePanel(size, swapchain_.format())) {
+    if (!xr_panel_unavailable_said_) {
+      std::fprintf(stderr,
+                   "plumb view: the headset's runtime takes no image of the window's format: no palette in "
+                   "the hand (the window's palette still works)\n");
+      xr_panel_unavailable_said_ = true;
+    }
+    return;
+  }
+  xr_panel_ = xr::panelOnHand(left.aim, static_cast<double>(size.width) / size.height);
+}
+
+// Where the right controller's ray meets the panel, it is the mouse there: its trigger the
+// left button. True while it points at the panel (the scene then takes no pointer).
+bool Viewer::pointAtHeadsetPanel() {
+  const xr::Controller& right = xr_session_->input().controller(xr::Hand::kRight);
+  const std::optional<Eigen::Vector2d> uv =
+      xr_panel_ && right.active && right.aim_valid ? xr::panelPoint(*xr_panel_, right.aim) : std::nullopt;
+  const auto mouse = [](InputEvent::Kind kind, const Eigen::Vector2d& at, bool pressed = false) {
+    return InputEvent{.kind = kind, .x = at.x(), .y = at.y(), .button = GLFW_MOUSE_BUTTON_LEFT, .pressed = pressed};
+  };
+  if (!uv) {
+    if (xr_panel_pressed_) xr_panel_events_.push_back(mouse(InputEvent::Kind::kMouseButton, {-1.0, -1.0}, false));
+    xr_panel_pressed_ = false;
+    return false;
+  }
+  const VkExtent2D size = window_.framebufferSize();
+  const Eigen::Vector2d at(uv->x() * size.width, uv->y() * size.height);
+  xr_panel_events_.push_back(mouse(InputEvent::Kind::kMouseMove, at));
+  const bool pressed = right.trigger >= (xr_panel_pressed_ ? kTriggerReleased : kTriggerPressed);
+  if (pressed != xr_panel_pressed_) xr_panel_events_.push_back(mouse(InputEvent::Kind::kMouseButton, at, pressed));
+  xr_panel_pressed_ = pressed;
+  xr_trigger_held_ = pressed;  // a pull that began on the panel does not click the scene as it leaves
+  xr_aim_point_.reset();
+  return true;
+}
+
+// The palette drawn onto the panel's image: cleared transparent, so that the scene shows
+// between the palette's windows.
+void Viewer::drawHeadsetPanel() {
+  const gpu::SwapchainImage image = xr_session_->acquirePanel();
+  if (ui_frames_ >= 1) ui_timeline_.wait(ui_frames_, UINT64_MAX);
+  ui_commands_.reset();
+  VkCommandBuffer commands = ui_commands_.begin();
+  gpu::imageBarrier(commands, image.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                    VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  const VkClearColorValue clear{{0.0f, 0.0f, 0.0f, 0.0f}};
+  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(commands, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
+  imgui_.record(commands, image);
+  gpu::submit(device_, commands, ui_timeline_, ++ui_frames_);
+  xr_session_->releasePanel();
 }
 
 // The right controller is a pointer as the mouse is: a view along its ray, whose centre pixel

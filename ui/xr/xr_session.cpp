@@ -49,11 +49,15 @@ XrReferenceSpaceType stageType(XrSession session) {
              : XR_REFERENCE_SPACE_TYPE_LOCAL;
 }
 
-VkFormat colourFormat(XrSession session) {
+std::vector<std::int64_t> swapchainFormats(XrSession session) {
   std::uint32_t count = 0;
   check(xrEnumerateSwapchainFormats(session, 0, &count, nullptr), "xrEnumerateSwapchainFormats");
   std::vector<std::int64_t> formats(count);
   check(xrEnumerateSwapchainFormats(session, count, &count, formats.data()), "xrEnumerateSwapchainFormats");
+  return formats;
+}
+
+VkFormat colourFormat(const std::vector<std::int64_t>& formats) {
   // The renderer's colour is RGBA8: a copy keeps its bytes into either of these.
   for (const VkFormat wanted : {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R8G8B8A8_UNORM}) {
     if (std::find(formats.begin(), formats.end(), static_cast<std::int64_t>(wanted)) != formats.end()) return wanted;
@@ -116,27 +120,9 @@ Session::Session(Runtime& runtime, const gpu::Instance& instance, const gpu::Dev
     };
     extent_ = {scaled(views[0].recommendedImageRectWidth, views[0].maxImageRectWidth),
                scaled(views[0].recommendedImageRectHeight, views[0].maxImageRectHeight)};
-    format_ = colourFormat(session_);
-
-    for (Swapchain& swapchain : swapchains_) {
-      auto info = xrStruct<XrSwapchainCreateInfo>(XR_TYPE_SWAPCHAIN_CREATE_INFO);
-      info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT;
-      info.format = format_;
-      info.sampleCount = 1;
-      info.width = extent_.width;
-      info.height = extent_.height;
-      info.faceCount = 1;
-      info.arraySize = 1;
-      info.mipCount = 1;
-      check(xrCreateSwapchain(session_, &info, &swapchain.handle), "xrCreateSwapchain");
-      std::uint32_t images = 0;
-      check(xrEnumerateSwapchainImages(swapchain.handle, 0, &images, nullptr), "xrEnumerateSwapchainImages");
-      std::vector<XrSwapchainImageVulkan2KHR> vulkan(images, {XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR, nullptr, {}});
-      check(xrEnumerateSwapchainImages(swapchain.handle, images, &images,
-                                       reinterpret_cast<XrSwapchainImageBaseHeader*>(vulkan.data())),
-            "xrEnumerateSwapchainImages");
-      for (const XrSwapchainImageVulkan2KHR& image : vulkan) swapchain.images.push_back(image.image);
-    }
+    formats_ = swapchainFormats(session_);
+    format_ = colourFormat(formats_);
+    for (Swapchain& swapchain : swapchains_) swapchain = createSwapchain(extent_, format_);
     input_ = std::make_unique<Input>(runtime.instance(), session_);
   } catch (...) {
     destroy();
@@ -148,8 +134,60 @@ Session::~Session() {
   destroy();
 }
 
+Session::Swapchain Session::createSwapchain(VkExtent2D extent, VkFormat format) const {
+  auto info = xrStruct<XrSwapchainCreateInfo>(XR_TYPE_SWAPCHAIN_CREATE_INFO);
+  info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT;
+  info.format = format;
+  info.sampleCount = 1;
+  info.width = extent.width;
+  info.height = extent.height;
+  info.faceCount = 1;
+  info.arraySize = 1;
+  info.mipCount = 1;
+  Swapchain swapchain;
+  check(xrCreateSwapchain(session_, &info, &swapchain.handle), "xrCreateSwapchain");
+  try {
+    std::uint32_t images = 0;
+    check(xrEnumerateSwapchainImages(swapchain.handle, 0, &images, nullptr), "xrEnumerateSwapchainImages");
+    std::vector<XrSwapchainImageVulkan2KHR> vulkan(images, {XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR, nullptr, {}});
+    check(xrEnumerateSwapchainImages(swapchain.handle, images, &images,
+                                     reinterpret_cast<XrSwapchainImageBaseHeader*>(vulkan.data())),
+          "xrEnumerateSwapchainImages");
+    for (const XrSwapchainImageVulkan2KHR& image : vulkan) swapchain.images.push_back(image.image);
+  } catch (...) {
+    xrDestroySwapchain(swapchain.handle);
+    throw;
+  }
+  return swapchain;
+}
+
+bool Session::preparePanel(VkExtent2D extent, VkFormat format) {
+  if (std::find(formats_.begin(), formats_.end(), static_cast<std::int64_t>(format)) == formats_.end()) return false;
+  if (panel_.handle != XR_NULL_HANDLE && panel_extent_.width == extent.width && panel_extent_.height == extent.height &&
+      panel_format_ == format) {
+    return true;
+  }
+  if (panel_.handle != XR_NULL_HANDLE) xrDestroySwapchain(panel_.handle);
+  panel_ = {};
+  panel_ = createSwapchain(extent, format);
+  panel_extent_ = extent;
+  panel_format_ = format;
+  return true;
+}
+
+gpu::SwapchainImage Session::acquirePanel() {
+  return acquire(panel_, panel_extent_, panel_format_);
+}
+
+void Session::releasePanel() {
+  auto release = xrStruct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
+  check(xrReleaseSwapchainImage(panel_.handle, &release), "xrReleaseSwapchainImage (panel)");
+}
+
 void Session::destroy() {
   input_.reset();
+  if (panel_.handle != XR_NULL_HANDLE) xrDestroySwapchain(panel_.handle);
+  panel_.handle = XR_NULL_HANDLE;
   for (Swapchain& swapchain : swapchains_) {
     if (swapchain.handle != XR_NULL_HANDLE) xrDestroySwapchain(swapchain.handle);
     swapchain.handle = XR_NULL_HANDLE;
@@ -244,7 +282,10 @@ std::optional<HeadsetFrame> Session::beginFrame() {
 }
 
 gpu::SwapchainImage Session::acquireEye(int eye) {
-  Swapchain& swapchain = swapchains_[static_cast<std::size_t>(eye)];
+  return acquire(swapchains_[static_cast<std::size_t>(eye)], extent_, format_);
+}
+
+gpu::SwapchainImage Session::acquire(Swapchain& swapchain, VkExtent2D extent, VkFormat format) {
   auto acquire = xrStruct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
   check(xrAcquireSwapchainImage(swapchain.handle, &acquire, &swapchain.acquired), "xrAcquireSwapchainImage");
   auto wait = xrStruct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
@@ -253,8 +294,8 @@ gpu::SwapchainImage Session::acquireEye(int eye) {
   gpu::SwapchainImage image{};
   image.image = swapchain.images.at(swapchain.acquired);
   image.index = swapchain.acquired;
-  image.extent = extent_;
-  image.format = format_;
+  image.extent = extent;
+  image.format = format;
   image.acquired = VK_NULL_HANDLE;
   image.rendered = VK_NULL_HANDLE;
   image.presented_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;  // XR_KHR_vulkan_enable2's contract
@@ -268,21 +309,30 @@ void Session::releaseEye(int eye) {
         "xrReleaseSwapchainImage");
 }
 
-void Session::endFrame(const HeadsetFrame& frame, bool rendered) {
+namespace {
+
+XrPosef xrPose(const Pose& pose) {
+  XrPosef result{};
+  result.position = {static_cast<float>(pose.position.x()), static_cast<float>(pose.position.y()),
+                     static_cast<float>(pose.position.z())};
+  result.orientation = {static_cast<float>(pose.orientation.x()), static_cast<float>(pose.orientation.y()),
+                        static_cast<float>(pose.orientation.z()), static_cast<float>(pose.orientation.w())};
+  return result;
+}
+
+}  // namespace
+
+void Session::endFrame(const HeadsetFrame& frame, bool rendered, const HandPanel* panel) {
   std::array<XrCompositionLayerProjectionView, kEyes> views{};
   auto layer = xrStruct<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
-  const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<const XrCompositionLayerBaseHeader*>(&layer)};
+  auto quad = xrStruct<XrCompositionLayerQuad>(XR_TYPE_COMPOSITION_LAYER_QUAD);
+  std::vector<const XrCompositionLayerBaseHeader*> layers;
   if (rendered) {
     for (int eye = 0; eye < kEyes; ++eye) {
       const EyeView& located = frame.eyes[static_cast<std::size_t>(eye)];
       XrCompositionLayerProjectionView& view = views[static_cast<std::size_t>(eye)];
       view.type = XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW;
-      view.pose.position = {static_cast<float>(located.pose.position.x()),
-                            static_cast<float>(located.pose.position.y()),
-                            static_cast<float>(located.pose.position.z())};
-      view.pose.orientation = {
-          static_cast<float>(located.pose.orientation.x()), static_cast<float>(located.pose.orientation.y()),
-          static_cast<float>(located.pose.orientation.z()), static_cast<float>(located.pose.orientation.w())};
+      view.pose = xrPose(located.pose);
       view.fov = {static_cast<float>(located.fov.left), static_cast<float>(located.fov.right),
                   static_cast<float>(located.fov.up), static_cast<float>(located.fov.down)};
       view.subImage.swapchain = swapchains_[static_cast<std::size_t>(eye)].handle;
@@ -293,12 +343,25 @@ void Session::endFrame(const HeadsetFrame& frame, bool rendered) {
     layer.space = stage_;
     layer.viewCount = kEyes;
     layer.views = views.data();
+    layers.push_back(reinterpret_cast<const XrCompositionLayerBaseHeader*>(&layer));
+  }
+  if (panel != nullptr && panel_.handle != XR_NULL_HANDLE) {
+    // Over the scene, its transparent parts showing it (the palette's gaps between panels).
+    quad.layerFlags = XR_COMPOSITION_LAYER_BLEND_TEXTURE_SOURCE_ALPHA_BIT;
+    quad.space = stage_;
+    quad.eyeVisibility = XR_EYE_VISIBILITY_BOTH;
+    quad.subImage.swapchain = panel_.handle;
+    quad.subImage.imageRect = {
+        {0, 0}, {static_cast<std::int32_t>(panel_extent_.width), static_cast<std::int32_t>(panel_extent_.height)}};
+    quad.pose = xrPose(panel->pose);
+    quad.size = {static_cast<float>(panel->width_m), static_cast<float>(panel->height_m)};
+    layers.push_back(reinterpret_cast<const XrCompositionLayerBaseHeader*>(&quad));
   }
   auto end = xrStruct<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
   end.displayTime = frame.display_time;
   end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
-  end.layerCount = rendered ? 1 : 0;
-  end.layers = layers;
+  end.layerCount = static_cast<std::uint32_t>(layers.size());
+  end.layers = layers.data();
   check(xrEndFrame(session_, &end), "xrEndFrame");
 }
 

@@ -22,6 +22,7 @@
 
 #include "engine/gpu/swapchain.h"
 #include "engine/view/camera.h"
+#include "ui/xr/hand_panel.h"
 #include "ui/xr/stage.h"
 
 namespace plumb::gpu {
@@ -81,8 +82,16 @@ class Session {
   gpu::SwapchainImage acquireEye(int eye);
   void releaseEye(int eye);
   // Submits the frame: a projection layer of the eyes as `frame` located them when
-  // `rendered`, else no layer.
-  void endFrame(const HeadsetFrame& frame, bool rendered);
+  // `rendered`, else no layer; over it the panel at `panel` when given (its image released
+  // this frame).
+  void endFrame(const HeadsetFrame& frame, bool rendered, const HandPanel* panel = nullptr);
+
+  // The panel's swapchain (the palette in the hand): `extent` pixels of `format`, which must
+  // be one the runtime offers (else false, and no panel). Made again when the extent changes.
+  bool preparePanel(VkExtent2D extent, VkFormat format);
+  // Its next image, waited for (COLOR_ATTACHMENT_OPTIMAL, as the eyes'), and back.
+  gpu::SwapchainImage acquirePanel();
+  void releasePanel();
 
   VkExtent2D eyeExtent() const { return extent_; }
   Input& input() { return *input_; }
@@ -98,12 +107,18 @@ class Session {
   };
 
   void destroy();
+  Swapchain createSwapchain(VkExtent2D extent, VkFormat format) const;
+  gpu::SwapchainImage acquire(Swapchain& swapchain, VkExtent2D extent, VkFormat format);
 
   Runtime& runtime_;
   XrSession session_ = XR_NULL_HANDLE;
   XrSpace stage_ = XR_NULL_HANDLE;
   XrSpace view_space_ = XR_NULL_HANDLE;
   std::array<Swapchain, kEyes> swapchains_{};
+  Swapchain panel_;
+  VkExtent2D panel_extent_{0, 0};
+  VkFormat panel_format_ = VK_FORMAT_UNDEFINED;
+  std::vector<std::int64_t> formats_;  // what the runtime offers, its preference first
   VkExtent2D extent_{0, 0};
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   std::unique_ptr<Input> input_;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "ui/xr/hand_panel.h"
+
 namespace plumb::xr {
 namespace {
 
@@ -163,6 +165,37 @@ TEST(Stage, TheBothEyesViewHoldsWhatEachEyeSees) {
     }
   }
   EXPECT_NEAR(view::metresPerPixel(both, 3.0), view::metresPerPixel(left, 3.0), 1e-4);
+}
+
+// The panel in the left hand: a ray at its centre meets it at (0.5, 0.5); its top left corner
+// is near (0, 0); a ray from behind or beside it misses.
+TEST(HandPanel, ARayMeetsThePanelWhereItPoints) {
+  const Pose hand = standing(-0.2, 1.1, -0.35);
+  const HandPanel panel = panelOnHand(hand, 16.0 / 9.0);
+  EXPECT_NEAR(panel.height_m, 0.36 * 9.0 / 16.0, kTight);
+  const Eigen::Vector3d normal = panel.pose.orientation * Eigen::Vector3d::UnitZ();
+  EXPECT_GT(normal.dot(Eigen::Vector3d(0.0, 1.6, 0.0) - panel.pose.position), 0.0) << "it faces the eyes";
+
+  const auto aimAt = [](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    Pose aim;
+    aim.position = from;
+    aim.orientation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(0.0, 0.0, -1.0), (to - from).normalized());
+    return aim;
+  };
+  const Eigen::Vector3d right_hand(0.25, 1.2, -0.1);
+  const std::optional<Eigen::Vector2d> centre = panelPoint(panel, aimAt(right_hand, panel.pose.position));
+  ASSERT_TRUE(centre);
+  EXPECT_TRUE(centre->isApprox(Eigen::Vector2d(0.5, 0.5), 1e-9));
+  const Eigen::Vector3d top_left =
+      panel.pose.position + panel.pose.orientation * Eigen::Vector3d(-0.49 * panel.width_m, 0.49 * panel.height_m, 0);
+  const std::optional<Eigen::Vector2d> corner = panelPoint(panel, aimAt(right_hand, top_left));
+  ASSERT_TRUE(corner);
+  EXPECT_NEAR(corner->x(), 0.01, 1e-9);
+  EXPECT_NEAR(corner->y(), 0.01, 1e-9);
+  // From behind the panel, and past its edge.
+  EXPECT_FALSE(panelPoint(panel, aimAt(panel.pose.position - 0.3 * normal, panel.pose.position)));
+  const Eigen::Vector3d beside = panel.pose.position + panel.pose.orientation * Eigen::Vector3d(0.3, 0.0, 0.0);
+  EXPECT_FALSE(panelPoint(panel, aimAt(right_hand, beside)));
 }
 
 }  // namespace
