@@ -42,7 +42,7 @@ struct SplatChunk {
   // Device address of the chunk's first scan index (16 bits each, two to a word; lod::NodePoints::scans);
   // 0: the cloud is one scan. Chunks start at multiples of kChunkPoints, so it is word-aligned.
   uint64_t scans;
-  uint64_t surfels;  // device address of the chunk's first Surfel (kSurfelWords each)
+  uint64_t surfels;        // device address of the chunk's first Surfel (kSurfelWords each)
   uint point_count;        // at most kChunkPoints
   float elevation_offset;  // the node origin's z above ResolvePush's elevation base
   // Each point is a disc in the plane of its surface (engine/render/surfels.h), of its surfel's
@@ -93,7 +93,7 @@ struct SplatPush {
   uint width;
   uint height;
   uint chunk_count;
-  float near_m;  // points nearer than this to the eye are clipped
+  float near_m;   // points nearer than this to the eye are clipped
   uint64_t clip;  // ClipPlanes; 0: every point kept
   // A length of 1 m at view depth d spans pixels_per_metre / d pixels (perspective), or
   // pixels_per_metre at any depth (orthographic): a point's radius on screen.
@@ -143,6 +143,17 @@ struct OverlayPush {
   uint width;
   uint height;
   float depth_tolerance;  // a fragment hides behind the cloud beyond depth * (1 + this) + 1 cm
+  uint reserved;
+};
+
+// The depth pass (shaders/depth_out.*.glsl): the resolved visibility's view depths into a depth
+// image, as a Vulkan perspective projection maps them (0 at the near plane, 1 at the far one),
+// for a headset runtime's reprojection (XR_KHR_composition_layer_depth).
+struct DepthOutPush {
+  uint64_t resolved;  // the resolved visibility, one uint64_t a pixel
+  uint width;
+  float near_m;
+  float far_m;
   uint reserved;
 };
 

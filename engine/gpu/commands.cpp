@@ -96,7 +96,7 @@ void memoryBarrier(VkCommandBuffer commands, VkPipelineStageFlags2 src_stages, V
 
 void imageBarrier(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkImageLayout to,
                   VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stages,
-                  VkAccessFlags2 dst_access) {
+                  VkAccessFlags2 dst_access, VkImageAspectFlags aspect) {
   VkImageMemoryBarrier2 barrier{};
   barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2;
   barrier.srcStageMask = src_stages;
@@ -108,7 +108,7 @@ void imageBarrier(VkCommandBuffer commands, VkImage image, VkImageLayout from, V
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  barrier.subresourceRange = {aspect, 0, 1, 0, 1};
   VkDependencyInfo dependency{};
   dependency.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
   dependency.imageMemoryBarrierCount = 1;

@@ -53,6 +53,6 @@ void memoryBarrier(VkCommandBuffer commands, VkPipelineStageFlags2 src_stages, V
 // Moves `image` (the whole colour image) from one layout to another, after `src` and before `dst`.
 void imageBarrier(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkImageLayout to,
                   VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stages,
-                  VkAccessFlags2 dst_access);
+                  VkAccessFlags2 dst_access, VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
 
 }  // namespace plumb::gpu

@@ -23,8 +23,11 @@ VkShaderModule createModule(VkDevice device, std::span<const std::uint32_t> spir
 
 GraphicsPipeline::GraphicsPipeline(const Device& device, std::span<const std::uint32_t> vertex_spirv,
                                    std::span<const std::uint32_t> fragment_spirv, std::uint32_t push_bytes,
-                                   VkFormat colour_format, const char* name)
+                                   VkFormat colour_format, const char* name, VkFormat depth_format)
     : device_(device.handle()), push_bytes_(push_bytes) {
+  assert((depth_format == VK_FORMAT_UNDEFINED) != (colour_format == VK_FORMAT_UNDEFINED) &&
+         "a pipeline draws colour or depth: give one format");
+  const bool colour = colour_format != VK_FORMAT_UNDEFINED;
   const std::string label = name;
   const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, push_bytes};
   VkPipelineLayoutCreateInfo layout{};
@@ -75,8 +78,13 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, std::span<const std::ui
         VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
     VkPipelineColorBlendStateCreateInfo blending{};
     blending.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-    blending.attachmentCount = 1;
+    blending.attachmentCount = colour ? 1 : 0;
     blending.pAttachments = &blend;
+    VkPipelineDepthStencilStateCreateInfo depth{};
+    depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+    depth.depthTestEnable = VK_TRUE;  // ALWAYS: the test passes, the write happens
+    depth.depthWriteEnable = VK_TRUE;
+    depth.depthCompareOp = VK_COMPARE_OP_ALWAYS;
     const std::array<VkDynamicState, 2> dynamic_states{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     VkPipelineDynamicStateCreateInfo dynamic{};
     dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
@@ -84,8 +92,9 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, std::span<const std::ui
     dynamic.pDynamicStates = dynamic_states.data();
     VkPipelineRenderingCreateInfo rendering{};
     rendering.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachmentFormats = &colour_format;
+    rendering.colorAttachmentCount = colour ? 1 : 0;
+    rendering.pColorAttachmentFormats = colour ? &colour_format : nullptr;
+    rendering.depthAttachmentFormat = depth_format;
 
     VkGraphicsPipelineCreateInfo create{};
     create.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
@@ -98,6 +107,7 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, std::span<const std::ui
     create.pRasterizationState = &raster;
     create.pMultisampleState = &multisample;
     create.pColorBlendState = &blending;
+    create.pDepthStencilState = colour ? nullptr : &depth;
     create.pDynamicState = &dynamic;
     create.layout = layout_;
     check(vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &create, nullptr, &pipeline_),

@@ -1,7 +1,8 @@
 #pragma once
-// A graphics pipeline for dynamic rendering into one colour attachment, drawing vertices the
-// vertex shader pulls itself from a buffer address in the push constants (no vertex input
-// state, no descriptor sets), with the viewport and scissor set per draw and alpha blending.
+// A graphics pipeline for dynamic rendering into one colour attachment (alpha-blended) or one
+// depth attachment (written whatever was there: a depth the fragment shader computes), drawing
+// vertices the vertex shader pulls itself from a buffer address in the push constants (no vertex
+// input state, no descriptor sets), with the viewport and scissor set per draw.
 
 #include <vulkan/vulkan.h>
 
@@ -15,10 +16,11 @@ class Device;
 
 class GraphicsPipeline {
  public:
-  // `push_bytes`: the push constant block both stages share. Triangle lists, no culling.
+  // `push_bytes`: the push constant block both stages share. Triangle lists, no culling. A
+  // `depth_format` makes a depth-only pipeline (then `colour_format` must be UNDEFINED).
   GraphicsPipeline(const Device& device, std::span<const std::uint32_t> vertex_spirv,
                    std::span<const std::uint32_t> fragment_spirv, std::uint32_t push_bytes, VkFormat colour_format,
-                   const char* name);
+                   const char* name, VkFormat depth_format = VK_FORMAT_UNDEFINED);
   ~GraphicsPipeline();
   GraphicsPipeline(const GraphicsPipeline&) = delete;
   GraphicsPipeline& operator=(const GraphicsPipeline&) = delete;

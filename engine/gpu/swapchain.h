@@ -32,6 +32,11 @@ struct SwapchainImage {
   VkSemaphore rendered;  // signal it when the image is ready to present; VK_NULL_HANDLE: none
   VkImageLayout presented_layout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;  // the layout it is handed on in
   bool decorated = true;  // the renderer's present hook draws on it (the window's interface)
+  // A headset eye's depth image (XR_KHR_composition_layer_depth), the same size, D32_SFLOAT or
+  // D16_UNORM: the renderer writes the frame's depth into it and hands it on in
+  // DEPTH_STENCIL_ATTACHMENT_OPTIMAL. VK_NULL_HANDLE: none.
+  VkImage depth = VK_NULL_HANDLE;
+  VkFormat depth_format = VK_FORMAT_UNDEFINED;
 };
 
 class Swapchain {

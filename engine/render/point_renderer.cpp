@@ -32,6 +32,7 @@
 #include "engine/gpu/upload_ring.h"
 #include "engine/gpu/vk_check.h"
 #include "engine/lod/node_cache.h"
+#include "engine/render/depth_out_pass.h"
 #include "engine/render/gpu_node_cache.h"
 #include "engine/render/intensity_range.h"
 #include "engine/render/overlay_pass.h"
@@ -176,6 +177,7 @@ struct PointRenderer::Resources {
         splat(d, kSplatCode, sizeof(shader::SplatPush), "splat"),
         resolve(d, kResolveCode, sizeof(shader::ResolvePush), "resolve"),
         timeline(d),
+        depth_out(d),
         ring(d, a, o.upload_ring_bytes),
         gpu_nodes(d, a, o.gpu_budget_bytes),
         surfels(o.background),
@@ -222,6 +224,7 @@ struct PointRenderer::Resources {
   gpu::TimelineSemaphore timeline;
   std::uint64_t submitted = 0;  // the last value a submission signals
   gpu::DeletionQueue deletions;
+  DepthOutPass depth_out;  // a headset eye's depth, when its image asks for it
   gpu::UploadRing ring;
   GpuNodeCache gpu_nodes;
   SurfelEstimates surfels;  // of streamed nodes, before their upload
@@ -557,6 +560,10 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   for (const gpu::SwapchainImage& image : present_to) {
     recordPresentation(commands, target, image, colour_image_ready, settings.background, r.present_hook);
     colour_image_ready = true;
+    if (image.depth != VK_NULL_HANDLE) {
+      r.depth_out.record(commands, target, camera, image.depth, image.depth_format,
+                         VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, r.deletions, value);
+    }
     if (image.acquired != VK_NULL_HANDLE || image.rendered != VK_NULL_HANDLE) {
       assert(window == nullptr && "a frame presents to at most one image with semaphores");
       window = &image;

@@ -132,6 +132,35 @@ std::optional<double> rimCentreX(const plumb::io::RgbaImage& image) {
   return sum / static_cast<double>(count);
 }
 
+// A Portable Float Map as the simulated headset writes depth: "Pf", width, height, a negative
+// scale (little-endian), then rows bottom to top. Returned rows top to bottom.
+struct DepthImage {
+  int width = 0, height = 0;
+  std::vector<float> depth;
+  float at(int x, int y) const {
+    return depth[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+  }
+};
+
+DepthImage readPfm(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  double scale = 0.0;
+  DepthImage image;
+  in >> magic >> image.width >> image.height >> scale;
+  in.get();  // the one whitespace before the data
+  EXPECT_EQ(magic, "Pf") << path;
+  EXPECT_LT(scale, 0.0) << path;
+  image.depth.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  for (int row = image.height - 1; row >= 0; --row) {
+    in.read(reinterpret_cast<char*>(image.depth.data() +
+                                    static_cast<std::size_t>(row) * static_cast<std::size_t>(image.width)),
+            static_cast<std::streamsize>(static_cast<std::size_t>(image.width) * sizeof(float)));
+  }
+  EXPECT_TRUE(in) << path << ": truncated";
+  return image;
+}
+
 plumb::xr::Pose poseFromJson(const json& value) {
   plumb::xr::Pose pose;
   pose.position = vector3(value.at("position"));
@@ -220,6 +249,8 @@ TEST_F(Headset, TheTriggerGrowsTheWallItPointsAtAndBothEyesShowIt) {
   }
   const json views = json::parse(last_line).at("views");
   ASSERT_EQ(views.size(), 2u);
+  // Each eye came with its depth (XR_KHR_composition_layer_depth), for the runtime's reprojection.
+  EXPECT_TRUE(views[0].at("depth").get<bool>() && views[1].at("depth").get<bool>()) << last_line;
   plumb::view::Camera desktop;
   desktop.position = kStandAt;
   desktop.target = kStandAt + Eigen::Vector3d(3.0, 0.0, 0.0);
@@ -240,6 +271,24 @@ TEST_F(Headset, TheTriggerGrowsTheWallItPointsAtAndBothEyesShowIt) {
     const std::optional<double> rim = rimCentreX(last[eye]);
     ASSERT_TRUE(rim) << "eye " << eye << ": the square's rim is not in the image";
     measured_x[eye] = *rim;
+  }
+  // The left eye's depth where the square is: the wall behind it (the depth is the cloud's; the
+  // square is an overlay), 3.5 m from the eye along its view, as the layer's planes decode it.
+  {
+    const DepthImage depth = readPfm(dir.file("eyes/latest-depth-0.pfm"));
+    ASSERT_EQ(depth.width, kEyeWidth);
+    const json range = views[0].at("depth_range");
+    const double near = range[0].get<double>(), far = range[1].get<double>();
+    const plumb::view::Camera left =
+        plumb::xr::eyeCamera(stage, poseFromJson(views[0].at("pose")),
+                             {views[0]["fov"]["left"].get<double>(), views[0]["fov"]["right"].get<double>(),
+                              views[0]["fov"]["up"].get<double>(), views[0]["fov"]["down"].get<double>()},
+                             kEyeWidth, kEyeHeight);
+    const Eigen::Vector2d pixel = *plumb::view::pixelOf(left, kSquareCentre);
+    const double z = depth.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()));
+    const double view_depth = near * far / (far - z * (far - near));
+    std::printf("the left eye's depth at the square: %.4f (%.4f m; planes %.3f, %.0f m)\n", z, view_depth, near, far);
+    EXPECT_NEAR(view_depth, 3.5, 0.02);
   }
   const double expected = expected_x[0] - expected_x[1], measured = measured_x[0] - measured_x[1];
   std::printf("disparity of the square: expected %.2f px, measured %.2f px (left %.2f / %.2f, right %.2f / %.2f)\n",

@@ -121,6 +121,8 @@ bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_n
                                   static_cast<int>(extent.width), static_cast<int>(extent.height));
       }
       const view::Camera both = xr::bothEyesCamera(eyes[0], eyes[1]);  // one selection, the same detail in each eye
+      frame->near_m = eyes[0].near_m / xr_stage_->scale;               // the depth layer's planes, in the stage
+      frame->far_m = eyes[0].far_m / xr_stage_->scale;
       const auto timeEye = [&] {
         if (!options_.profile) return;
         if (const std::optional<render::GpuTimings> timings = cloud_->renderer->gpuTimings()) {

@@ -123,6 +123,20 @@ Session::Session(Runtime& runtime, const gpu::Instance& instance, const gpu::Dev
     formats_ = swapchainFormats(session_);
     format_ = colourFormat(formats_);
     for (Swapchain& swapchain : swapchains_) swapchain = createSwapchain(extent_, format_);
+    // Depth for the runtime's reprojection, where it takes it, in a format without stencil.
+    if (runtime.depthLayers()) {
+      for (const VkFormat depth : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D16_UNORM}) {
+        if (std::find(formats_.begin(), formats_.end(), static_cast<std::int64_t>(depth)) != formats_.end()) {
+          depth_format_ = depth;
+          break;
+        }
+      }
+    }
+    if (depth_format_ != VK_FORMAT_UNDEFINED) {
+      for (Swapchain& swapchain : depth_swapchains_) {
+        swapchain = createSwapchain(extent_, depth_format_, XR_SWAPCHAIN_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+      }
+    }
     input_ = std::make_unique<Input>(runtime.instance(), session_);
   } catch (...) {
     destroy();
@@ -134,9 +148,9 @@ Session::~Session() {
   destroy();
 }
 
-Session::Swapchain Session::createSwapchain(VkExtent2D extent, VkFormat format) const {
+Session::Swapchain Session::createSwapchain(VkExtent2D extent, VkFormat format, XrSwapchainUsageFlags usage) const {
   auto info = xrStruct<XrSwapchainCreateInfo>(XR_TYPE_SWAPCHAIN_CREATE_INFO);
-  info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT;
+  info.usageFlags = usage;
   info.format = format;
   info.sampleCount = 1;
   info.width = extent.width;
@@ -188,6 +202,10 @@ void Session::destroy() {
   input_.reset();
   if (panel_.handle != XR_NULL_HANDLE) xrDestroySwapchain(panel_.handle);
   panel_.handle = XR_NULL_HANDLE;
+  for (Swapchain& swapchain : depth_swapchains_) {
+    if (swapchain.handle != XR_NULL_HANDLE) xrDestroySwapchain(swapchain.handle);
+    swapchain.handle = XR_NULL_HANDLE;
+  }
   for (Swapchain& swapchain : swapchains_) {
     if (swapchain.handle != XR_NULL_HANDLE) xrDestroySwapchain(swapchain.handle);
     swapchain.handle = XR_NULL_HANDLE;
@@ -282,7 +300,13 @@ std::optional<HeadsetFrame> Session::beginFrame() {
 }
 
 gpu::SwapchainImage Session::acquireEye(int eye) {
-  return acquire(swapchains_[static_cast<std::size_t>(eye)], extent_, format_);
+  gpu::SwapchainImage image = acquire(swapchains_[static_cast<std::size_t>(eye)], extent_, format_);
+  Swapchain& depth = depth_swapchains_[static_cast<std::size_t>(eye)];
+  if (depth.handle != XR_NULL_HANDLE) {
+    image.depth = acquire(depth, extent_, depth_format_).image;
+    image.depth_format = depth_format_;
+  }
+  return image;
 }
 
 gpu::SwapchainImage Session::acquire(Swapchain& swapchain, VkExtent2D extent, VkFormat format) {
@@ -307,6 +331,10 @@ void Session::releaseEye(int eye) {
   auto release = xrStruct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
   check(xrReleaseSwapchainImage(swapchains_[static_cast<std::size_t>(eye)].handle, &release),
         "xrReleaseSwapchainImage");
+  const Swapchain& depth = depth_swapchains_[static_cast<std::size_t>(eye)];
+  if (depth.handle != XR_NULL_HANDLE) {
+    check(xrReleaseSwapchainImage(depth.handle, &release), "xrReleaseSwapchainImage (depth)");
+  }
 }
 
 namespace {
@@ -324,6 +352,7 @@ XrPosef xrPose(const Pose& pose) {
 
 void Session::endFrame(const HeadsetFrame& frame, bool rendered, const HandPanel* panel) {
   std::array<XrCompositionLayerProjectionView, kEyes> views{};
+  std::array<XrCompositionLayerDepthInfoKHR, kEyes> depths{};
   auto layer = xrStruct<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
   auto quad = xrStruct<XrCompositionLayerQuad>(XR_TYPE_COMPOSITION_LAYER_QUAD);
   std::vector<const XrCompositionLayerBaseHeader*> layers;
@@ -339,6 +368,19 @@ void Session::endFrame(const HeadsetFrame& frame, bool rendered, const HandPanel
       view.subImage.imageRect = {{0, 0},
                                  {static_cast<std::int32_t>(extent_.width), static_cast<std::int32_t>(extent_.height)}};
       view.subImage.imageArrayIndex = 0;
+      const Swapchain& depth_swapchain = depth_swapchains_[static_cast<std::size_t>(eye)];
+      if (depth_swapchain.handle != XR_NULL_HANDLE) {
+        // The depth image's values as the eyes' projections map view depth (near 0, far 1).
+        XrCompositionLayerDepthInfoKHR& depth = depths[static_cast<std::size_t>(eye)];
+        depth.type = XR_TYPE_COMPOSITION_LAYER_DEPTH_INFO_KHR;
+        depth.subImage = view.subImage;
+        depth.subImage.swapchain = depth_swapchain.handle;
+        depth.minDepth = 0.0f;
+        depth.maxDepth = 1.0f;
+        depth.nearZ = static_cast<float>(frame.near_m);
+        depth.farZ = static_cast<float>(frame.far_m);
+        view.next = &depth;
+      }
     }
     layer.space = stage_;
     layer.viewCount = kEyes;

@@ -54,6 +54,9 @@ struct HeadsetFrame {
   bool should_render = false;     // false: submit the frame empty (hidden, or tracking lost)
   std::array<EyeView, 2> eyes{};  // left, right
   Pose head;                      // the view space in the stage (between the eyes)
+  // The eyes' near and far planes in the stage, metres, for the depth layer: set by whoever
+  // renders the eyes (their projections' planes) before endFrame.
+  double near_m = 0.05, far_m = 10'000.0;
 };
 
 class Session {
@@ -78,7 +81,9 @@ class Session {
   // unless running. Then exactly one endFrame.
   std::optional<HeadsetFrame> beginFrame();
   // The eye's next swapchain image, waited for: render into it, hand it back in
-  // COLOR_ATTACHMENT_OPTIMAL, then releaseEye. Only between beginFrame and endFrame.
+  // COLOR_ATTACHMENT_OPTIMAL, then releaseEye. With a depth image too where the runtime takes
+  // depth (XR_KHR_composition_layer_depth): write the eye's depth into it (DEPTH_STENCIL_
+  // ATTACHMENT_OPTIMAL). Only between beginFrame and endFrame.
   gpu::SwapchainImage acquireEye(int eye);
   void releaseEye(int eye);
   // Submits the frame: a projection layer of the eyes as `frame` located them when
@@ -107,7 +112,9 @@ class Session {
   };
 
   void destroy();
-  Swapchain createSwapchain(VkExtent2D extent, VkFormat format) const;
+  Swapchain createSwapchain(VkExtent2D extent, VkFormat format,
+                            XrSwapchainUsageFlags usage = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT |
+                                                          XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT) const;
   gpu::SwapchainImage acquire(Swapchain& swapchain, VkExtent2D extent, VkFormat format);
 
   Runtime& runtime_;
@@ -115,6 +122,8 @@ class Session {
   XrSpace stage_ = XR_NULL_HANDLE;
   XrSpace view_space_ = XR_NULL_HANDLE;
   std::array<Swapchain, kEyes> swapchains_{};
+  std::array<Swapchain, kEyes> depth_swapchains_{};  // none where the runtime takes no depth
+  VkFormat depth_format_ = VK_FORMAT_UNDEFINED;
   Swapchain panel_;
   VkExtent2D panel_extent_{0, 0};
   VkFormat panel_format_ = VK_FORMAT_UNDEFINED;

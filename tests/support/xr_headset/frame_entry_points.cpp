@@ -35,7 +35,8 @@ struct PendingCapture {
   std::uint32_t array_index = 0;
   XrRect2Di rect{};
   std::string file_name;
-  std::string latest_name;  // an eye's latest-eye-E.png; empty for a quad
+  std::string latest_name;  // an eye's latest-eye-E.png or latest-depth-E.pfm; empty for a quad
+  bool depth = false;       // a depth image, read back to a Portable Float Map
 };
 
 XrResult checkSubImage(std::uint64_t session_id, const XrSwapchainSubImage& sub_image, bool want_depth,
@@ -77,14 +78,16 @@ XrResult checkLayerSpace(std::uint64_t session_id, XrSpace handle, const Space*&
 }
 
 XrResult checkDepthInfo(const Instance& instance, std::uint64_t session_id,
-                        const XrCompositionLayerProjectionView& view, bool& has_depth) {
+                        const XrCompositionLayerProjectionView& view, SubmittedView& recorded,
+                        const Swapchain*& swapchain) {
   // Without the extension enabled, its structure is one the runtime does not know: ignored.
   const auto* depth = instance.depth_layers ? reinterpret_cast<const XrCompositionLayerDepthInfoKHR*>(
                                                   findInChain(view.next, XR_TYPE_COMPOSITION_LAYER_DEPTH_INFO_KHR))
                                             : nullptr;
-  has_depth = depth != nullptr;
+  recorded.depth = depth != nullptr;
   if (depth == nullptr) return XR_SUCCESS;
-  const Swapchain* swapchain = nullptr;
+  recorded.near_z = depth->nearZ;
+  recorded.far_z = depth->farZ;
   if (const XrResult checked = checkSubImage(session_id, depth->subImage, true, swapchain); XR_FAILED(checked)) {
     return checked;
   }
@@ -118,7 +121,9 @@ XrResult collectProjection(const Instance& instance, std::uint64_t session_id,
       return checked;
     }
     SubmittedView recorded;
-    if (const XrResult checked = checkDepthInfo(instance, session_id, view, recorded.depth); XR_FAILED(checked)) {
+    const Swapchain* depth_swapchain = nullptr;
+    if (const XrResult checked = checkDepthInfo(instance, session_id, view, recorded, depth_swapchain);
+        XR_FAILED(checked)) {
       return checked;
     }
     recorded.pose = space_pose ? compose(*space_pose, fromXr(view.pose)) : fromXr(view.pose);
@@ -127,7 +132,13 @@ XrResult collectProjection(const Instance& instance, std::uint64_t session_id,
     submitted.views.push_back(recorded);
     if (first)
       captures.push_back({swapchain, view.subImage.imageArrayIndex, view.subImage.imageRect,
-                          eyeImageName(submitted.frame, eye), latestEyeImageName(eye)});
+                          eyeImageName(submitted.frame, eye), latestEyeImageName(eye), false});
+    if (first && depth_swapchain != nullptr) {
+      const auto* depth = reinterpret_cast<const XrCompositionLayerDepthInfoKHR*>(
+          findInChain(view.next, XR_TYPE_COMPOSITION_LAYER_DEPTH_INFO_KHR));
+      captures.push_back({depth_swapchain, depth->subImage.imageArrayIndex, depth->subImage.imageRect,
+                          depthImageName(submitted.frame, eye), latestDepthImageName(eye), true});
+    }
   }
   return XR_SUCCESS;
 }
@@ -143,7 +154,7 @@ XrResult collectQuad(std::uint64_t session_id, const XrCompositionLayerQuad& lay
     return checked;
   }
   captures.push_back({swapchain, layer.subImage.imageArrayIndex, layer.subImage.imageRect,
-                      quadImageName(submitted.frame, submitted.quad_count), ""});
+                      quadImageName(submitted.frame, submitted.quad_count), "", false});
   ++submitted.quad_count;
   return XR_SUCCESS;
 }
@@ -158,13 +169,23 @@ XrResult writeFrame(const Instance& instance, Session& session, const SubmittedF
     const bool latest = instance.script.capture_latest && !capture.latest_name.empty();
     if (!captured && !latest) continue;
     const VkImage image = capture.swapchain->images->images()[*capture.swapchain->released];
+    const auto width = static_cast<std::uint32_t>(capture.rect.extent.width);
+    const auto height = static_cast<std::uint32_t>(capture.rect.extent.height);
+    if (capture.depth) {
+      std::vector<float> depths;
+      if (!readDepthImage(session.vulkan, *session.commands, image, capture.swapchain->spec.format, capture.array_index,
+                          capture.rect, depths) ||
+          (captured && !writePfm(instance.output_folder, capture.file_name, width, height, depths)) ||
+          (latest && !writePfm(instance.output_folder, capture.latest_name, width, height, depths))) {
+        return XR_ERROR_RUNTIME_FAILURE;
+      }
+      continue;
+    }
     std::vector<std::uint8_t> rgba;
     if (!readColorImage(session.vulkan, *session.commands, image, capture.swapchain->spec.format, capture.array_index,
                         capture.rect, rgba)) {
       return XR_ERROR_RUNTIME_FAILURE;
     }
-    const auto width = static_cast<std::uint32_t>(capture.rect.extent.width);
-    const auto height = static_cast<std::uint32_t>(capture.rect.extent.height);
     if (captured && !writePng(instance.output_folder, capture.file_name, width, height, rgba)) {
       return XR_ERROR_RUNTIME_FAILURE;
     }

@@ -40,6 +40,7 @@ std::string frameJsonLine(const SubmittedFrame& frame) {
           view.image_rect.extent.height}},
         {"depth", view.depth},
     });
+    if (view.depth) views.back()["depth_range"] = {view.near_z, view.far_z};
   }
   const nlohmann::json line{{"frame", frame.frame},
                             {"display_time", frame.display_time},
@@ -70,6 +71,44 @@ std::string latestEyeImageName(std::uint32_t eye) {
   name += std::to_string(eye);
   name += ".png";
   return name;
+}
+
+std::string depthImageName(std::uint64_t frame, std::uint32_t eye) {
+  return "frame-" + padded(frame) + "-depth-" + std::to_string(eye) + ".pfm";
+}
+
+std::string latestDepthImageName(std::uint32_t eye) {
+  std::string name = "latest-depth-";  // appended: GCC 12 -O3 warns (-Wrestrict) on a literal + std::string
+  name += std::to_string(eye);
+  name += ".pfm";
+  return name;
+}
+
+bool writePfm(const std::string& folder, const std::string& name, std::uint32_t width, std::uint32_t height,
+              const std::vector<float>& depths) {
+  const std::filesystem::path path = std::filesystem::path(folder) / name;
+  const std::filesystem::path temporary = std::filesystem::path(folder) / ("." + name + ".partial");
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << "Pf\n" << width << ' ' << height << "\n-1.0\n";  // a negative scale: little-endian
+    for (std::uint32_t row = height; row-- > 0;) {
+      out.write(reinterpret_cast<const char*>(depths.data() + std::size_t{row} * width),
+                static_cast<std::streamsize>(std::size_t{width} * sizeof(float)));
+    }
+    out.flush();
+    if (!out) {
+      std::fprintf(stderr, "simulated headset: cannot write %s\n", temporary.c_str());
+      return false;
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::fprintf(stderr, "simulated headset: cannot rename %s to %s: %s\n", temporary.c_str(), path.c_str(),
+                 error.message().c_str());
+    return false;
+  }
+  return true;
 }
 
 std::string quadImageName(std::uint64_t frame, std::uint32_t quad) {

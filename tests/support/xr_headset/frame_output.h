@@ -16,7 +16,8 @@ struct SubmittedView {
   Pose pose;  // in the LOCAL/STAGE space (the script's), whatever space the layer named
   XrFovf fov{};
   XrRect2Di image_rect{};
-  bool depth = false;  // an XrCompositionLayerDepthInfoKHR came with it
+  bool depth = false;                 // an XrCompositionLayerDepthInfoKHR came with it
+  float near_z = 0.0f, far_z = 0.0f;  // its planes, when it did
 };
 
 struct SubmittedFrame {
@@ -38,7 +39,15 @@ bool appendFrameLine(const std::string& folder, const std::string& line);
 // "frame-0007-eye-1.png" and "frame-0007-quad-0.png": the frame index zero-padded to 4 digits.
 std::string eyeImageName(std::uint64_t frame, std::uint32_t eye);
 std::string quadImageName(std::uint64_t frame, std::uint32_t quad);
-std::string latestEyeImageName(std::uint32_t eye);  // "latest-eye-E.png"
+std::string latestEyeImageName(std::uint32_t eye);                   // "latest-eye-E.png"
+std::string depthImageName(std::uint64_t frame, std::uint32_t eye);  // "frame-NNNN-depth-E.pfm"
+std::string latestDepthImageName(std::uint32_t eye);                 // "latest-depth-E.pfm"
+
+// Writes depths (one float a pixel, rows top to bottom) as a Portable Float Map at `folder`/`name`
+// ("Pf", little-endian, rows bottom to top as that format has them), through a temporary file
+// renamed into place. False on failure (reported on stderr).
+bool writePfm(const std::string& folder, const std::string& name, std::uint32_t width, std::uint32_t height,
+              const std::vector<float>& depths);
 
 // Writes RGBA8 pixels (rows top to bottom) as a PNG at `folder`/`name`, through a temporary file
 // renamed into place so a reader never sees half a file. False on failure (reported on stderr).

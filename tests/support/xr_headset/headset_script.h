@@ -15,7 +15,9 @@
 //    "capture": "all" | "none" | [frame indices],   frames read back to PNGs (default "all")
 //    "capture_latest": false,                true: every frame's eyes also go to latest-eye-E.png,
 //                                            replaced each frame (the last frame of a session of
-//                                            unknown length)
+//                                            unknown length); an eye's depth, when the
+//                                            application gives one, goes to frame-NNNN-depth-E.pfm
+//                                            and latest-depth-E.pfm (Portable Float Maps)
 //    "after_last_frame": "exit" | "hold",    exit (the default): STOPPING after the last frame;
 //                                            hold: the last frame repeats for ever
 //    "frames": [                             default: one frame with the head at (0, 1.6, 0)

@@ -65,8 +65,9 @@ bool createHostBuffer(const VulkanBinding& binding, VkDeviceSize size, HostBuffe
   return vulkanSucceeded(vkBindBufferMemory(binding.device, host.buffer, host.memory, 0), "vkBindBufferMemory");
 }
 
-VkImageMemoryBarrier layoutChange(VkImage image, std::uint32_t array_layer, VkImageLayout from, VkImageLayout to,
-                                  VkAccessFlags src_access, VkAccessFlags dst_access) {
+VkImageMemoryBarrier layoutChange(VkImage image, VkImageAspectFlags aspect, std::uint32_t array_layer,
+                                  VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
+                                  VkAccessFlags dst_access) {
   VkImageMemoryBarrier barrier{};
   barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
   barrier.srcAccessMask = src_access;
@@ -76,17 +77,18 @@ VkImageMemoryBarrier layoutChange(VkImage image, std::uint32_t array_layer, VkIm
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, array_layer, 1};
+  barrier.subresourceRange = {aspect, 0, 1, array_layer, 1};
   return barrier;
 }
 
-}  // namespace
-
-bool readColorImage(const VulkanBinding& binding, OneShotCommands& commands, VkImage image, VkFormat format,
-                    std::uint32_t array_layer, const XrRect2Di& rect, std::vector<std::uint8_t>& rgba) {
+// Copies `rect` of an image's `aspect` (in `held`, its layout between the application's uses,
+// where it is left) into `bytes`, `pixel_bytes` a pixel, rows top to bottom.
+bool readImage(const VulkanBinding& binding, OneShotCommands& commands, VkImage image, VkImageAspectFlags aspect,
+               VkImageLayout held, VkAccessFlags held_access, std::uint32_t array_layer, const XrRect2Di& rect,
+               std::uint32_t pixel_bytes, std::vector<std::uint8_t>& bytes) {
   const auto width = static_cast<std::uint32_t>(rect.extent.width);
   const auto height = static_cast<std::uint32_t>(rect.extent.height);
-  const VkDeviceSize size = VkDeviceSize{width} * height * 4;
+  const VkDeviceSize size = VkDeviceSize{width} * height * pixel_bytes;
 
   // 1. The buffer.
   HostBuffer host(binding.device);
@@ -95,12 +97,12 @@ bool readColorImage(const VulkanBinding& binding, OneShotCommands& commands, VkI
   // 2. The commands.
   const bool copied = commands.run([&](VkCommandBuffer command_buffer) {
     const VkImageMemoryBarrier to_copy =
-        layoutChange(image, array_layer, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        layoutChange(image, aspect, array_layer, held, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_MEMORY_WRITE_BIT,
+                     VK_ACCESS_TRANSFER_READ_BIT);
     vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
                          nullptr, 0, nullptr, 1, &to_copy);
     VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, array_layer, 1};
+    region.imageSubresource = {aspect, 0, array_layer, 1};
     region.imageOffset = {rect.offset.x, rect.offset.y, 0};
     region.imageExtent = {width, height, 1};
     vkCmdCopyImageToBuffer(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.buffer, 1, &region);
@@ -108,8 +110,7 @@ bool readColorImage(const VulkanBinding& binding, OneShotCommands& commands, VkI
     // writes after it, and the layout change is made visible to attachment use (anything else the
     // application does next starts with a barrier of its own).
     const VkImageMemoryBarrier back =
-        layoutChange(image, array_layer, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                     0, VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+        layoutChange(image, aspect, array_layer, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, held, 0, held_access);
     vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
                          nullptr, 0, nullptr, 1, &back);
     VkBufferMemoryBarrier to_host{};
@@ -141,11 +142,50 @@ bool readColorImage(const VulkanBinding& binding, OneShotCommands& commands, VkI
       return false;
     }
   }
-  rgba.resize(static_cast<std::size_t>(size));
-  std::memcpy(rgba.data(), mapped, rgba.size());
+  bytes.resize(static_cast<std::size_t>(size));
+  std::memcpy(bytes.data(), mapped, bytes.size());
   vkUnmapMemory(binding.device, host.memory);
+  return true;
+}
+
+}  // namespace
+
+bool readColorImage(const VulkanBinding& binding, OneShotCommands& commands, VkImage image, VkFormat format,
+                    std::uint32_t array_layer, const XrRect2Di& rect, std::vector<std::uint8_t>& rgba) {
+  if (!readImage(binding, commands, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, array_layer, rect, 4,
+                 rgba)) {
+    return false;
+  }
   if (format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_B8G8R8A8_UNORM) {
     for (std::size_t i = 0; i < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
+  }
+  return true;
+}
+
+bool readDepthImage(const VulkanBinding& binding, OneShotCommands& commands, VkImage image, VkFormat format,
+                    std::uint32_t array_layer, const XrRect2Di& rect, std::vector<float>& depths) {
+  const bool wide = format == VK_FORMAT_D32_SFLOAT;
+  if (!wide && format != VK_FORMAT_D16_UNORM) {
+    std::fprintf(stderr, "simulated headset: depth of format %d is not read back (D32_SFLOAT, D16_UNORM are)\n",
+                 static_cast<int>(format));
+    return false;
+  }
+  std::vector<std::uint8_t> bytes;
+  if (!readImage(binding, commands, image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                 array_layer, rect, wide ? 4 : 2, bytes)) {
+    return false;
+  }
+  depths.resize(bytes.size() / (wide ? 4 : 2));
+  for (std::size_t i = 0; i < depths.size(); ++i) {
+    if (wide) {
+      std::memcpy(&depths[i], bytes.data() + 4 * i, 4);
+    } else {
+      std::uint16_t unorm = 0;
+      std::memcpy(&unorm, bytes.data() + 2 * i, 2);
+      depths[i] = static_cast<float>(unorm) / 65535.0f;
+    }
   }
   return true;
 }

@@ -18,4 +18,9 @@ namespace plumb::xr_headset {
 bool readColorImage(const VulkanBinding& binding, OneShotCommands& commands, VkImage image, VkFormat format,
                     std::uint32_t array_layer, const XrRect2Di& rect, std::vector<std::uint8_t>& rgba);
 
+// The same for a depth image (in DEPTH_STENCIL_ATTACHMENT_OPTIMAL, D32_SFLOAT or D16_UNORM, left
+// there): one float a pixel, the stored depth (D16 as a fraction of 65535).
+bool readDepthImage(const VulkanBinding& binding, OneShotCommands& commands, VkImage image, VkFormat format,
+                    std::uint32_t array_layer, const XrRect2Di& rect, std::vector<float>& depths);
+
 }  // namespace plumb::xr_headset
