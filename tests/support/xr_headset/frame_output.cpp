@@ -84,17 +84,16 @@ std::string latestDepthImageName(std::uint32_t eye) {
   return name;
 }
 
-bool writePfm(const std::string& folder, const std::string& name, std::uint32_t width, std::uint32_t height,
-              const std::vector<float>& depths) {
+namespace {
+
+// Writes `bytes` to `folder`/`name` through a temporary file renamed into place, so that a reader
+// never sees half a file.
+bool writeFile(const std::string& folder, const std::string& name, const std::vector<char>& bytes) {
   const std::filesystem::path path = std::filesystem::path(folder) / name;
   const std::filesystem::path temporary = std::filesystem::path(folder) / ("." + name + ".partial");
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << "Pf\n" << width << ' ' << height << "\n-1.0\n";  // a negative scale: little-endian
-    for (std::uint32_t row = height; row-- > 0;) {
-      out.write(reinterpret_cast<const char*>(depths.data() + std::size_t{row} * width),
-                static_cast<std::streamsize>(std::size_t{width} * sizeof(float)));
-    }
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.flush();
     if (!out) {
       std::fprintf(stderr, "simulated headset: cannot write %s\n", temporary.c_str());
@@ -109,6 +108,19 @@ bool writePfm(const std::string& folder, const std::string& name, std::uint32_t 
     return false;
   }
   return true;
+}
+
+}  // namespace
+
+bool writePfm(const std::string& folder, const std::string& name, std::uint32_t width, std::uint32_t height,
+              const std::vector<float>& depths) {
+  const std::string header = "Pf\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n-1.0\n";
+  std::vector<char> bytes(header.begin(), header.end());  // a negative scale: little-endian floats
+  for (std::uint32_t row = height; row-- > 0;) {          // bottom to top, as the format has them
+    const auto* first = reinterpret_cast<const char*>(depths.data() + std::size_t{row} * width);
+    bytes.insert(bytes.end(), first, first + std::size_t{width} * sizeof(float));
+  }
+  return writeFile(folder, name, bytes);
 }
 
 std::string quadImageName(std::uint64_t frame, std::uint32_t quad) {
@@ -117,8 +129,6 @@ std::string quadImageName(std::uint64_t frame, std::uint32_t quad) {
 
 bool writePng(const std::string& folder, const std::string& name, std::uint32_t width, std::uint32_t height,
               const std::vector<std::uint8_t>& rgba) {
-  const std::filesystem::path path = std::filesystem::path(folder) / name;
-  const std::filesystem::path temporary = std::filesystem::path(folder) / ("." + name + ".partial");
   std::vector<char> png;
   auto append = [](void* context, void* data, int size) {
     auto* out = static_cast<std::vector<char>*>(context);
@@ -127,26 +137,10 @@ bool writePng(const std::string& folder, const std::string& name, std::uint32_t 
   const int stride = static_cast<int>(width) * 4;
   if (stbi_write_png_to_func(append, &png, static_cast<int>(width), static_cast<int>(height), 4, rgba.data(), stride) ==
       0) {
-    std::fprintf(stderr, "simulated headset: PNG encoding failed for %s\n", path.c_str());
+    std::fprintf(stderr, "simulated headset: PNG encoding failed for %s/%s\n", folder.c_str(), name.c_str());
     return false;
   }
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(png.data(), static_cast<std::streamsize>(png.size()));
-    out.flush();
-    if (!out) {
-      std::fprintf(stderr, "simulated headset: cannot write %s\n", temporary.c_str());
-      return false;
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::fprintf(stderr, "simulated headset: cannot rename %s to %s: %s\n", temporary.c_str(), path.c_str(),
-                 error.message().c_str());
-    return false;
-  }
-  return true;
+  return writeFile(folder, name, png);
 }
 
 }  // namespace plumb::xr_headset
