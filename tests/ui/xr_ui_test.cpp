@@ -464,6 +464,34 @@ TEST_F(Headset, ASessionTheRuntimeEndsLeavesTheDesktopGoingOn) {
   EXPECT_TRUE(fs::exists(dir.file("shots/desktop.png")));
 }
 
+// A session ends and a new one starts from the palette's Enter VR: the runtime plays its script
+// again, and ends that one too; the desktop goes on after each.
+TEST_F(Headset, EnterVrStartsASessionAgainAfterOneEnded) {
+  const plumb::test::TempDirectory dir;
+  const json script = {
+      {"eye_size", {160, 120}},
+      {"capture", "none"},
+      {"after_last_frame", "exit"},
+      {"frames", {{{"repeat", 8}, {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}}}}}};
+  const json steps = json::array({
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 30}},
+      {{"click", {915, 441}}},  // the View panel's Enter VR (its place in a 1280 x 720 window)
+      {{"wait", "frames"}, {"count", 30}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, 1280, 720, headsetEnvironment(dir, script)),
+            0);
+  const std::string log = plumb::test::viewerLog(dir);
+  const auto count = [&](const std::string& said) {
+    std::size_t n = 0;
+    for (std::size_t at = log.find(said); at != std::string::npos; at = log.find(said, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("plumb view: headset session on "), 2u) << log;
+  EXPECT_EQ(count("headset session focused"), 2u) << log;
+  EXPECT_EQ(count("the headset session ended; the desktop goes on"), 2u) << log;
+}
+
 // No runtime: one message, and the desktop as usual.
 TEST_F(Headset, WithoutARuntimeTheViewerSaysSoAndGoesOnOnTheDesktop) {
   const plumb::test::TempDirectory dir;
