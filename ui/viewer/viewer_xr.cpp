@@ -95,11 +95,17 @@ void Viewer::pollHeadset() {
 }
 
 bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_name) {
-  if (!xr_session_ || !cloud_) return false;
+  if (!xr_session_) return false;
   std::optional<xr::HeadsetFrame> frame;
   try {
     frame = xr_session_->beginFrame();
     if (!frame) return false;  // not running (starting, stopped): the desktop as usual
+    if (!cloud_) {
+      // Still loading: empty frames keep the runtime's pacing (it shows its own waiting view),
+      // the window shows the progress.
+      xr_session_->endFrame(*frame, false);
+      return false;
+    }
     ++xr_frames_;
     bool rendered = false;
     bool window_presented = false;
