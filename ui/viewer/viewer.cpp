@@ -104,7 +104,7 @@ LoadedCloud::~LoadedCloud() {
 Viewer::Viewer(const ViewerOptions& options)
     : options_(options),
       project_(ProjectSession::open(options.project, options.cloud)),
-      xr_runtime_(options.xr ? connectHeadset(options) : nullptr),
+      xr_runtime_(options.xr ? connectHeadset() : nullptr),
       instance_(instanceOptions(xr_runtime_.get()), windows_.requiredInstanceExtensions()),
       window_(windows_, options.width, options.height, "Plumb"),
       surface_(window_.createSurface(instance_.handle())),

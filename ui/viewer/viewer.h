@@ -154,7 +154,7 @@ class Viewer {
   void writeScreenshot(const std::string& name);
 
   // --- the headset (viewer_xr.cpp) ---
-  static std::unique_ptr<xr::Runtime> connectHeadset(const ViewerOptions& options);
+  static std::unique_ptr<xr::Runtime> connectHeadset();
   void startHeadsetSession();
   void pollHeadset();
   // Renders a headset frame (each eye, the window mirroring the left one) when a session runs;

@@ -2,9 +2,10 @@
 // the controllers as another input source of the same tools.
 //
 //   frame: poll the session (begin, stop, end as the runtime says) -> xrWaitFrame and the eyes'
-//          views -> the controllers (the trigger grows where the right hand points) -> the
-//          right eye, then the left eye presented to its image and to the window (the mirror)
-//          -> xrEndFrame
+//          views -> moving (sticks, grips, B/Y) -> the palette's panel above the left hand and
+//          the right controller on it, or in the scene (hover, trigger: the tools' clicks) ->
+//          the right eye, then the left eye presented to its image and to the window (the
+//          mirror), each with its depth -> the panel's image -> xrEndFrame
 //
 // The headset renders through the window's renderer and settings: one cloud, one colour mode,
 // one section; each eye is a camera of its own (an off-axis frustum from xrLocateViews).
@@ -43,7 +44,7 @@ constexpr double kPointerHalfAngleRad = 0.35;
 
 }  // namespace
 
-std::unique_ptr<xr::Runtime> Viewer::connectHeadset(const ViewerOptions&) {
+std::unique_ptr<xr::Runtime> Viewer::connectHeadset() {
   // The loader prints its own lines for a missing runtime; the one message below says it all
   // (XR_LOADER_DEBUG=error brings the loader's back).
   setenv("XR_LOADER_DEBUG", "none", 0);
