@@ -167,6 +167,7 @@ class Viewer {
   bool pointAtHeadsetPanel();
   void drawHeadsetPanel();
   void adaptHeadsetBudget(const xr::HeadsetFrame& frame);
+  std::uint64_t headsetBudget() const;  // the eyes' point budget now
   void drawHeadsetControls();
   void reportHeadset() const;
 

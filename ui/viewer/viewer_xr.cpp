@@ -38,6 +38,7 @@ constexpr float kTriggerPressed = 0.75f, kTriggerReleased = 0.25f;  // hysteresi
 constexpr double kWalkSpeed = 1.5;                                  // stage metres a second, stick full
 constexpr double kSnapTurnRad = M_PI / 6.0;                         // 30 degrees a push
 constexpr double kStickDeadZone = 0.15;
+constexpr double kLeastBudgetShare = 0.1;  // of the point budget, the eyes' least
 // The view along a controller's ray: 20 degrees each side vertically, so that the snapping
 // radius (a dozen pixels) is about 1.3 degrees of a hand's aim at the eyes' resolution.
 constexpr double kPointerHalfAngleRad = 0.35;
@@ -118,8 +119,7 @@ bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_n
       adaptHeadsetBudget(*frame);
       render::RenderSettings eye_settings = settings_;
       eye_settings.clip = clip_.region();
-      eye_settings.selection.point_budget = std::max<std::uint64_t>(
-          50'000, static_cast<std::uint64_t>(static_cast<double>(settings_.selection.point_budget) * xr_budget_share_));
+      eye_settings.selection.point_budget = headsetBudget();
       cloud_->renderer->setOverlay(withClipBox(overlay_.update(scene_.registry())));
       const VkExtent2D extent = xr_session_->eyeExtent();
       std::array<view::Camera, 2> eyes;
@@ -386,7 +386,13 @@ void Viewer::adaptHeadsetBudget(const xr::HeadsetFrame& frame) {
   const double period_ms = static_cast<double>(frame.display_period) * 1e-6;
   if (period_ms <= 0.0) return;
   const double step = std::clamp(std::sqrt(period_ms / std::max(frame_ms, 1.0)), 0.8, 1.25);
-  xr_budget_share_ = std::clamp(xr_budget_share_ * step, 0.02, 1.0);
+  // Never below a tenth: on lavapipe a frame's fixed costs (the mirror, the palette, the
+  // presentation) alone exceed a headset's period, and fewer points would not buy it back.
+  xr_budget_share_ = std::clamp(xr_budget_share_ * step, kLeastBudgetShare, 1.0);
+}
+
+std::uint64_t Viewer::headsetBudget() const {
+  return static_cast<std::uint64_t>(static_cast<double>(settings_.selection.point_budget) * xr_budget_share_);
 }
 
 void Viewer::reportHeadset() const {
@@ -396,8 +402,7 @@ void Viewer::reportHeadset() const {
     return values[values.size() / 2];
   };
   const double frame_ms = median(xr_frame_ms_);
-  const auto budget =
-      static_cast<unsigned long long>(static_cast<double>(settings_.selection.point_budget) * xr_budget_share_);
+  const auto budget = static_cast<unsigned long long>(headsetBudget());
   std::printf(
       "plumb view: headset: %zu frames, median %.1f ms a frame (%.1f Hz; both eyes and the mirror), budget "
       "%llu points at the end, %s\n",
