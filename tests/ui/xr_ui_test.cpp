@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -436,6 +437,49 @@ TEST_F(Headset, ThePaletteInTheLeftHandPicksATool) {
     fs::create_directories(keep);
     fs::copy_file(dir.file("eyes/frame-0030-quad-0.png"), fs::path(keep) / "xr-panel.png",
                   fs::copy_options::overwrite_existing);
+  }
+}
+
+// The controller snaps as the mouse does: in the Polygon tool's rectangle, three pulls each
+// aimed 1 cm off a corner of the square make a rectangle whose corners are the square's, exactly.
+TEST_F(Headset, TheControllersPullsSnapToTheSquaresCorners) {
+  const plumb::test::TempDirectory dir;
+  const Eigen::Vector3d right_hand(0.2, 1.3, -0.1);
+  // The square's corner (dy, dz) in the stage (its -z is the world's +x, its +x the world's -y),
+  // 1 cm off towards the square's inside.
+  const auto nearCorner = [](int dy, int dz) {
+    const Eigen::Vector3d world =
+        kSquareCentre - kStandAt + Eigen::Vector3d(0.0, dy * (kSquareHalf - 0.01), dz * (kSquareHalf - 0.01));
+    return Eigen::Vector3d(-world.y(), 1.6 + world.z(), -world.x());
+  };
+  const std::array<std::pair<int, int>, 3> corners{{{-1, -1}, {1, -1}, {1, 1}}};
+  json frames = json::array({{{"repeat", 10},
+                              {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}},
+                              {"right", {{"aim", pose(right_hand, nearCorner(-1, -1))}, {"trigger", 0.0}}}}});
+  for (const auto& [dy, dz] : corners) {
+    const json aim = pose(right_hand, nearCorner(dy, dz));
+    frames.push_back({{"repeat", 10}, {"right", {{"aim", aim}, {"trigger", 0.0}}}});
+    frames.push_back({{"repeat", 5}, {"right", {{"aim", aim}, {"trigger", 1.0}}}});
+    frames.push_back({{"repeat", 5}, {"right", {{"aim", aim}, {"trigger", 0.0}}}});
+  }
+  const json script = {
+      {"eye_size", {kEyeWidth, kEyeHeight}}, {"capture", "none"}, {"after_last_frame", "hold"}, {"frames", frames}};
+  const json steps = json::array({
+      {{"tool", "polygon"}},
+      {{"key", "R"}},  // a rectangle from three points
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 90}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, 640, 400, headsetEnvironment(dir, script)),
+            0);
+  const json polygons = readJson(dir.file("scene.json")).at("polygons");
+  ASSERT_EQ(polygons.size(), 2u) << polygons.dump(1) << "\n" << plumb::test::viewerLog(dir);
+  const json& drawn = polygons[1].at("vertices");
+  ASSERT_EQ(drawn.size(), 4u) << polygons.dump(1);
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Eigen::Vector3d corner =
+        kSquareCentre + kSquareHalf * Eigen::Vector3d(0.0, corners[i].first, corners[i].second);
+    EXPECT_LT((vector3(drawn[i]) - corner).norm(), 1e-6) << "corner " << i << ": " << drawn.dump();
   }
 }
 
