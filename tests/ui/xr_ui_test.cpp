@@ -483,6 +483,66 @@ TEST_F(Headset, TheControllersPullsSnapToTheSquaresCorners) {
   }
 }
 
+// Direction finding with the controller: a polygon's first two vertices pulled at two corners
+// of the square (A, then B above it), then the controller moved along the square's bottom edge
+// into its corner D, which finds that edge's line; A held locks it, and a typed 0.5 puts the
+// third vertex 0.5 m along it from B: level, where "towards the pointer" would have gone down
+// to D.
+//
+//     B ------- C  ...  the third vertex, 0.5 m from B, level
+//     |         |
+//     A ------- D   <- the pointer moves along this edge into D
+TEST_F(Headset, TheControllerFindsAndLocksADirection) {
+  const plumb::test::TempDirectory dir;
+  const Eigen::Vector3d right_hand(0.2, 1.3, -0.1);
+  // A world point in the stage (its -z is the world's +x, its +x the world's -y).
+  const auto stageOf = [](const Eigen::Vector3d& world) {
+    const Eigen::Vector3d d = world - kStandAt;
+    return Eigen::Vector3d(-d.y(), 1.6 + d.z(), -d.x());
+  };
+  const auto corner = [](int dy, int dz) {
+    return Eigen::Vector3d(kSquareCentre + kSquareHalf * Eigen::Vector3d(0.0, dy, dz));
+  };
+  const Eigen::Vector3d a = corner(-1, -1), b = corner(-1, 1), d = corner(1, -1);
+  const auto aimAt = [&](const Eigen::Vector3d& world, double trigger, bool lock = false) {
+    return json{{"aim", pose(right_hand, stageOf(world))}, {"trigger", trigger}, {"a", lock}};
+  };
+  json frames = json::array(
+      {{{"repeat", 10}, {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}}, {"right", aimAt(a, 0.0)}},
+       {{"repeat", 5}, {"right", aimAt(a, 1.0)}},
+       {{"repeat", 5}, {"right", aimAt(a, 0.0)}},
+       {{"repeat", 10}, {"right", aimAt(b, 0.0)}},
+       {{"repeat", 5}, {"right", aimAt(b, 1.0)}},
+       {{"repeat", 5}, {"right", aimAt(b, 0.0)}}});
+  for (const double along : {-0.04, -0.03, -0.02, -0.01, 0.0}) {  // along the bottom edge, into D
+    frames.push_back({{"repeat", 2}, {"right", aimAt(d + Eigen::Vector3d(0.0, along, 0.0), 0.0)}});
+  }
+  frames.push_back({{"repeat", 5}, {"right", aimAt(d, 0.0, true)}});
+  const json script = {
+      {"eye_size", {kEyeWidth, kEyeHeight}}, {"capture", "none"}, {"after_last_frame", "hold"}, {"frames", frames}};
+  const json steps = json::array({
+      {{"tool", "polygon"}},
+      {{"wait", "streaming_idle"}, {"timeout_s", 300}},
+      {{"wait", "frames"}, {"count", 100}},
+      {{"type", "0.5"}},
+      {{"key", "ENTER"}},  // the typed vertex
+      {{"wait", "frames"}, {"count", 2}},
+      {{"key", "ENTER"}},  // closes the polygon
+      {{"wait", "frames"}, {"count", 2}},
+  });
+  ASSERT_EQ(plumb::test::runViewerSession(dir, viewAndProject(dir), steps, 640, 400, headsetEnvironment(dir, script)),
+            0);
+  const json polygons = readJson(dir.file("scene.json")).at("polygons");
+  ASSERT_EQ(polygons.size(), 2u) << polygons.dump(1) << "\n" << plumb::test::viewerLog(dir);
+  const json& drawn = polygons[1].at("vertices");
+  ASSERT_EQ(drawn.size(), 3u) << polygons.dump(1);
+  EXPECT_LT((vector3(drawn[0]) - a).norm(), 1e-6) << drawn.dump();
+  EXPECT_LT((vector3(drawn[1]) - b).norm(), 1e-6) << drawn.dump();
+  const Eigen::Vector3d step = vector3(drawn[2]) - b;
+  EXPECT_NEAR(step.norm(), 0.5, 1e-6) << drawn.dump();
+  EXPECT_NEAR(std::abs(step.y()), 0.5, 1e-6) << "not along the bottom edge's line: " << drawn.dump();
+}
+
 // The runtime ends the session (the user took the headset off and chose to leave): the viewer
 // ends it cleanly and goes on on the desktop.
 TEST_F(Headset, ASessionTheRuntimeEndsLeavesTheDesktopGoingOn) {

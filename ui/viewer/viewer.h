@@ -230,6 +230,7 @@ class Viewer {
   std::optional<xr::StagePlacement> xr_stage_;
   double xr_resolution_scale_ = 1.0;
   bool xr_trigger_held_ = false;
+  bool xr_lock_held_ = false;                    // the right controller's A: the drawing tools' direction locked
   std::optional<Eigen::Vector3d> xr_aim_point_;  // what the right controller aimed at last frame
   // The palette on a panel in the left hand (while it is tracked), and the mouse events the right
   // controller makes on it, for the palette's next frame.

@@ -340,8 +340,9 @@ std::optional<PointerView> Viewer::controllerPointer(const xr::HeadsetFrame& fra
   return at;
 }
 
-// The right controller: its hover snaps and finds directions every frame; its trigger, pulled,
-// clicks (grows, picks a measurement's term, places a vertex, selects).
+// The right controller: its hover snaps and finds directions every frame; A held locks the
+// direction; its trigger, pulled, clicks (grows, picks a measurement's term, places a vertex,
+// selects).
 void Viewer::headsetControllers(const xr::HeadsetFrame& frame) {
   const std::optional<PointerView> at = controllerPointer(frame);
   const xr::Controller& right = xr_session_->input().controller(xr::Hand::kRight);
@@ -351,6 +352,11 @@ void Viewer::headsetControllers(const xr::HeadsetFrame& frame) {
   if (!at || right.trigger <= kTriggerReleased) xr_trigger_held_ = false;
   if (!at) return;
 
+  // A held locks the drawing tools' direction, as Shift does on the desktop.
+  if (right.primary != xr_lock_held_) {
+    xr_lock_held_ = right.primary;
+    drawing_.lockDirection(right.primary);
+  }
   hoverAt(at);
   const std::optional<Snap>& hover = scene_.tool().hover;
   const view::Ray ray = view::rayThroughPixel(at->camera, at->pixel.x(), at->pixel.y());
