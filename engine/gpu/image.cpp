@@ -8,6 +8,19 @@
 
 namespace plumb::gpu {
 
+VkImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                            const char* name) {
+  VkImageViewCreateInfo create{};
+  create.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+  create.image = image;
+  create.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  create.format = format;
+  create.subresourceRange = {aspect, 0, 1, 0, 1};
+  VkImageView view = VK_NULL_HANDLE;
+  check(vkCreateImageView(device, &create, nullptr, &view), std::string("vkCreateImageView (") + name + ")");
+  return view;
+}
+
 Image::Image(const Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, VkImageUsageFlags usage,
              const char* name)
     : device_(device.handle()), format_(format), width_(width), height_(height) {
@@ -33,13 +46,7 @@ Image::Image(const Device& device, std::uint32_t width, std::uint32_t height, Vk
     allocate.memoryTypeIndex = device.memoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     check(vkAllocateMemory(device_, &allocate, nullptr, &memory_), std::string("vkAllocateMemory (") + name + ")");
     check(vkBindImageMemory(device_, image_, memory_, 0), "vkBindImageMemory");
-    VkImageViewCreateInfo view{};
-    view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-    view.image = image_;
-    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    view.format = format;
-    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    check(vkCreateImageView(device_, &view, nullptr, &view_), "vkCreateImageView");
+    view_ = createImageView(device_, image_, format, VK_IMAGE_ASPECT_COLOR_BIT, name);
   } catch (...) {
     destroy();
     throw;

@@ -12,6 +12,11 @@ namespace plumb::gpu {
 
 class Device;
 
+// A 2-D view of mip 0, layer 0 of `image` (`aspect`: colour or depth); the caller destroys it.
+// Throws plumb::Error naming `name`.
+VkImageView createImageView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                            const char* name);
+
 class Image {
  public:
   Image() = default;

@@ -5,6 +5,7 @@
 #include "engine/gpu/commands.h"
 #include "engine/gpu/deletion_queue.h"
 #include "engine/gpu/device.h"
+#include "engine/gpu/image.h"
 #include "engine/gpu/vk_check.h"
 #include "engine/render/render_target.h"
 #include "engine/view/camera.h"
@@ -37,14 +38,8 @@ void DepthOutPass::record(VkCommandBuffer commands, const RenderTarget& target, 
     pipeline = std::make_unique<gpu::GraphicsPipeline>(
         device_, kVertexCode, kFragmentCode, sizeof(shader::DepthOutPush), VK_FORMAT_UNDEFINED, "depth out", format);
   }
-  VkImageViewCreateInfo view_info{};
-  view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-  view_info.image = image;
-  view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  view_info.format = format;
-  view_info.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-  VkImageView view = VK_NULL_HANDLE;
-  gpu::check(vkCreateImageView(device_.handle(), &view_info, nullptr, &view), "vkCreateImageView (depth out)");
+  const VkImageView view =
+      gpu::createImageView(device_.handle(), image, format, VK_IMAGE_ASPECT_DEPTH_BIT, "headset eye's depth");
   deletions.defer(frame_value, [device = device_.handle(), view] { vkDestroyImageView(device, view, nullptr); });
 
   // The resolve's writes before the fragment shader's reads; the image's old content goes.

@@ -112,6 +112,17 @@ class Headset : public ::testing::Test {
 
 plumb::test::TempDirectory* Headset::room_ = nullptr;
 
+// The user's head in every script: standing, 1.6 m up, looking down the stage's -z.
+const json kStanding = {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}};
+
+// A session the runtime ends after 8 frames of the standing head, with small eyes.
+json eightFramesThenExit() {
+  return {{"eye_size", {160, 120}},
+          {"capture", "none"},
+          {"after_last_frame", "exit"},
+          {"frames", {{{"repeat", 8}, {"head", kStanding}}}}};
+}
+
 json pose(const Eigen::Vector3d& position, const Eigen::Vector3d& look_at) {
   return {{"position", jsonPoint(position)}, {"look_at", jsonPoint(look_at)}};
 }
@@ -196,7 +207,7 @@ TEST_F(Headset, TheTriggerGrowsTheWallItPointsAtAndBothEyesShowIt) {
       {"capture_latest", true},
       {"after_last_frame", "hold"},
       {"frames",
-       {{{"repeat", 10}, {"head", {{"position", jsonPoint(head)}, {"orientation", {0, 0, 0, 1}}}}, {"right", right}},
+       {{{"repeat", 10}, {"head", kStanding}, {"right", right}},
         {{"repeat", 5}, {"event", "unfocus"}, {"right", pulled}},  // not focused: no input reaches Plumb
         {{"repeat", 5}, {"event", "focus"}, {"right", right}},
         {{"repeat", 5}, {"right", pulled}},
@@ -340,10 +351,7 @@ TEST_F(Headset, WalkingNearerGrowsFinerAndTheModelOnATableCoarser) {
                        {"capture", "none"},
                        {"after_last_frame", "hold"},
                        {"frames",
-                        {{{"repeat", 10},
-                          {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}},
-                          {"right", still},
-                          {"left", left_still}},
+                        {{{"repeat", 10}, {"head", kStanding}, {"right", still}, {"left", left_still}},
                          {{"repeat", 5}, {"right", pulled}},
                          {{"repeat", 10}, {"right", still}},
                          {{"repeat", 45}, {"left", left_walking}},  // 45 frames at 90 Hz, full stick: 0.75 m
@@ -398,10 +406,7 @@ TEST_F(Headset, ThePaletteInTheLeftHandPicksATool) {
                        {"capture", {30}},
                        {"after_last_frame", "hold"},
                        {"frames",
-                        {{{"repeat", 20},
-                          {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}},
-                          {"left", left},
-                          {"right", right(on_panel, 0.0)}},
+                        {{{"repeat", 20}, {"head", kStanding}, {"left", left}, {"right", right(on_panel, 0.0)}},
                          {{"repeat", 5}, {"right", right(on_panel, 1.0)}},
                          {{"repeat", 10}, {"right", right(on_panel, 0.0)}},
                          {{"repeat", 10}, {"right", right(point_a, 0.0)}},
@@ -454,7 +459,7 @@ TEST_F(Headset, TheControllersPullsSnapToTheSquaresCorners) {
   };
   const std::array<std::pair<int, int>, 3> corners{{{-1, -1}, {1, -1}, {1, 1}}};
   json frames = json::array({{{"repeat", 10},
-                              {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}},
+                              {"head", kStanding},
                               {"right", {{"aim", pose(right_hand, nearCorner(-1, -1))}, {"trigger", 0.0}}}}});
   for (const auto& [dy, dz] : corners) {
     const json aim = pose(right_hand, nearCorner(dy, dz));
@@ -507,13 +512,12 @@ TEST_F(Headset, TheControllerFindsAndLocksADirection) {
   const auto aimAt = [&](const Eigen::Vector3d& world, double trigger, bool lock = false) {
     return json{{"aim", pose(right_hand, stageOf(world))}, {"trigger", trigger}, {"a", lock}};
   };
-  json frames = json::array(
-      {{{"repeat", 10}, {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}}, {"right", aimAt(a, 0.0)}},
-       {{"repeat", 5}, {"right", aimAt(a, 1.0)}},
-       {{"repeat", 5}, {"right", aimAt(a, 0.0)}},
-       {{"repeat", 10}, {"right", aimAt(b, 0.0)}},
-       {{"repeat", 5}, {"right", aimAt(b, 1.0)}},
-       {{"repeat", 5}, {"right", aimAt(b, 0.0)}}});
+  json frames = json::array({{{"repeat", 10}, {"head", kStanding}, {"right", aimAt(a, 0.0)}},
+                             {{"repeat", 5}, {"right", aimAt(a, 1.0)}},
+                             {{"repeat", 5}, {"right", aimAt(a, 0.0)}},
+                             {{"repeat", 10}, {"right", aimAt(b, 0.0)}},
+                             {{"repeat", 5}, {"right", aimAt(b, 1.0)}},
+                             {{"repeat", 5}, {"right", aimAt(b, 0.0)}}});
   for (const double along : {-0.04, -0.03, -0.02, -0.01, 0.0}) {  // along the bottom edge, into D
     frames.push_back({{"repeat", 2}, {"right", aimAt(d + Eigen::Vector3d(0.0, along, 0.0), 0.0)}});
   }
@@ -547,11 +551,7 @@ TEST_F(Headset, TheControllerFindsAndLocksADirection) {
 // ends it cleanly and goes on on the desktop.
 TEST_F(Headset, ASessionTheRuntimeEndsLeavesTheDesktopGoingOn) {
   const plumb::test::TempDirectory dir;
-  const json script = {
-      {"eye_size", {160, 120}},
-      {"capture", "none"},
-      {"after_last_frame", "exit"},
-      {"frames", {{{"repeat", 8}, {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}}}}}};
+  const json script = eightFramesThenExit();
   const json steps = json::array({
       {{"wait", "streaming_idle"}, {"timeout_s", 300}},
       {{"wait", "frames"}, {"count", 30}},
@@ -572,11 +572,7 @@ TEST_F(Headset, ASessionTheRuntimeEndsLeavesTheDesktopGoingOn) {
 // again, and ends that one too; the desktop goes on after each.
 TEST_F(Headset, EnterVrStartsASessionAgainAfterOneEnded) {
   const plumb::test::TempDirectory dir;
-  const json script = {
-      {"eye_size", {160, 120}},
-      {"capture", "none"},
-      {"after_last_frame", "exit"},
-      {"frames", {{{"repeat", 8}, {"head", {{"position", {0, 1.6, 0}}, {"orientation", {0, 0, 0, 1}}}}}}}};
+  const json script = eightFramesThenExit();
   const json steps = json::array({
       {{"wait", "streaming_idle"}, {"timeout_s", 300}},
       {{"wait", "frames"}, {"count", 30}},

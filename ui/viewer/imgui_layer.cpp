@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/gpu/commands.h"
 #include "engine/gpu/device.h"
+#include "engine/gpu/image.h"
 #include "engine/gpu/instance.h"
 #include "engine/gpu/swapchain.h"
 #include "engine/gpu/timeline.h"
@@ -220,13 +221,8 @@ const ImguiLayer::Target& ImguiLayer::targetFor(const gpu::SwapchainImage& image
   }
   Target& target = targets_[image.image];
   if (target.framebuffer != VK_NULL_HANDLE) return target;
-  VkImageViewCreateInfo view{};
-  view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-  view.image = image.image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  view.format = image.format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  gpu::check(vkCreateImageView(device_.handle(), &view, nullptr, &target.view), "vkCreateImageView");
+  target.view =
+      gpu::createImageView(device_.handle(), image.image, image.format, VK_IMAGE_ASPECT_COLOR_BIT, "imgui target");
   VkFramebufferCreateInfo framebuffer{};
   framebuffer.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
   framebuffer.renderPass = render_pass_;

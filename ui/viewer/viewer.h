@@ -160,8 +160,8 @@ class Viewer {
   // Renders a headset frame (each eye, the window mirroring the left one) when a session runs;
   // false when none does and the window is the desktop's.
   bool renderHeadsetFrame(bool screenshot, const std::string& screenshot_name);
-  std::optional<PointerView> controllerPointer(const xr::HeadsetFrame& frame);
-  void headsetControllers(const xr::HeadsetFrame& frame);
+  std::optional<PointerView> controllerPointer(const view::Camera& left_eye);
+  void headsetControllers(const view::Camera& left_eye);
   void moveInHeadset(const xr::HeadsetFrame& frame);
   void placeHeadsetPanel();
   bool pointAtHeadsetPanel();

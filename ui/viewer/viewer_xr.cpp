@@ -114,19 +114,20 @@ bool Viewer::renderHeadsetFrame(bool screenshot, const std::string& screenshot_n
     if (frame->should_render) {
       if (!xr_stage_) xr_stage_ = xr::placementAt(cloud_->navigator->camera(), frame->head);
       moveInHeadset(*frame);
-      placeHeadsetPanel();
-      if (!pointAtHeadsetPanel()) headsetControllers(*frame);
-      adaptHeadsetBudget(*frame);
-      render::RenderSettings eye_settings = settings_;
-      eye_settings.clip = clip_.region();
-      eye_settings.selection.point_budget = headsetBudget();
-      cloud_->renderer->setOverlay(withClipBox(overlay_.update(scene_.registry())));
+      // The eyes' cameras where this frame's moves left the stage.
       const VkExtent2D extent = xr_session_->eyeExtent();
       std::array<view::Camera, 2> eyes;
       for (std::size_t eye = 0; eye < 2; ++eye) {
         eyes[eye] = xr::eyeCamera(*xr_stage_, frame->eyes[eye].pose, frame->eyes[eye].fov,
                                   static_cast<int>(extent.width), static_cast<int>(extent.height));
       }
+      placeHeadsetPanel();
+      if (!pointAtHeadsetPanel()) headsetControllers(eyes[0]);
+      adaptHeadsetBudget(*frame);
+      render::RenderSettings eye_settings = settings_;
+      eye_settings.clip = clip_.region();
+      eye_settings.selection.point_budget = headsetBudget();
+      cloud_->renderer->setOverlay(withClipBox(overlay_.update(scene_.registry())));
       const view::Camera both = xr::bothEyesCamera(eyes[0], eyes[1]);  // one selection, the same detail in each eye
       frame->near_m = eyes[0].near_m / xr_stage_->scale;               // the depth layer's planes, in the stage
       frame->far_m = eyes[0].far_m / xr_stage_->scale;
@@ -306,7 +307,7 @@ void Viewer::drawHeadsetPanel() {
 // it points with, wide enough that the snapping radius in pixels is a comfortable angle for a
 // hand. Its movement is the last aim point's shift in that view. Picking renders that view
 // first, then reads its visibility buffer as a mouse click reads the window's.
-std::optional<PointerView> Viewer::controllerPointer(const xr::HeadsetFrame& frame) {
+std::optional<PointerView> Viewer::controllerPointer(const view::Camera& left_eye) {
   const xr::Controller& right = xr_session_->input().controller(xr::Hand::kRight);
   if (!right.active || !right.aim_valid) {
     xr_aim_point_.reset();
@@ -334,17 +335,15 @@ std::optional<PointerView> Viewer::controllerPointer(const xr::HeadsetFrame& fra
   };
   // A grow's detail: the left eye's, at the headset's full resolution.
   const double full = 1.0 / xr_resolution_scale_;
-  at.click_view = {xr::eyeCamera(*xr_stage_, frame.eyes[0].pose, frame.eyes[0].fov, static_cast<int>(extent.width),
-                                 static_cast<int>(extent.height)),
-                   extent.width * full, extent.height * full};
+  at.click_view = {left_eye, extent.width * full, extent.height * full};
   return at;
 }
 
 // The right controller: its hover snaps and finds directions every frame; A held locks the
 // direction; its trigger, pulled, clicks (grows, picks a measurement's term, places a vertex,
 // selects).
-void Viewer::headsetControllers(const xr::HeadsetFrame& frame) {
-  const std::optional<PointerView> at = controllerPointer(frame);
+void Viewer::headsetControllers(const view::Camera& left_eye) {
+  const std::optional<PointerView> at = controllerPointer(left_eye);
   const xr::Controller& right = xr_session_->input().controller(xr::Hand::kRight);
   const bool pulled = at && right.trigger >= kTriggerPressed;
   const bool fire = pulled && !xr_trigger_held_;

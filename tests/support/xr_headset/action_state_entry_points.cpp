@@ -163,6 +163,14 @@ XrResult checkHaptic(const char* function, XrSession session, const XrHapticActi
   return lookUpSampled(function, *found, *owner, &as_get_info, XR_ACTION_TYPE_VIBRATION_OUTPUT, sampled);
 }
 
+// What a boolean, float and vector state share: active, changed since the last sync, and when.
+template <typename State>
+void fillChange(const SampledInput& sampled, State& state) {
+  state.isActive = sampled.active ? XR_TRUE : XR_FALSE;
+  state.changedSinceLastSync = sampled.changed ? XR_TRUE : XR_FALSE;
+  state.lastChangeTime = sampled.active ? sampled.last_change_time : 0;
+}
+
 }  // namespace
 
 XrResult XRAPI_CALL xrSyncActions(XrSession session, const XrActionsSyncInfo* sync_info) {
@@ -232,10 +240,8 @@ XrResult XRAPI_CALL xrGetActionStateBoolean(XrSession session, const XrActionSta
   const XrResult result = readState("xrGetActionStateBoolean", session, get_info, XR_ACTION_TYPE_BOOLEAN_INPUT,
                                     XR_TYPE_ACTION_STATE_BOOLEAN, state, sampled, found);
   if (XR_FAILED(result)) return result;
-  state->isActive = sampled->active ? XR_TRUE : XR_FALSE;
+  fillChange(*sampled, *state);
   state->currentState = sampled->active && sampled->boolean ? XR_TRUE : XR_FALSE;
-  state->changedSinceLastSync = sampled->changed ? XR_TRUE : XR_FALSE;
-  state->lastChangeTime = sampled->active ? sampled->last_change_time : 0;
   return sessionSuccess(*found);
 }
 
@@ -247,10 +253,8 @@ XrResult XRAPI_CALL xrGetActionStateFloat(XrSession session, const XrActionState
   const XrResult result = readState("xrGetActionStateFloat", session, get_info, XR_ACTION_TYPE_FLOAT_INPUT,
                                     XR_TYPE_ACTION_STATE_FLOAT, state, sampled, found);
   if (XR_FAILED(result)) return result;
-  state->isActive = sampled->active ? XR_TRUE : XR_FALSE;
+  fillChange(*sampled, *state);
   state->currentState = sampled->active ? sampled->value : 0;
-  state->changedSinceLastSync = sampled->changed ? XR_TRUE : XR_FALSE;
-  state->lastChangeTime = sampled->active ? sampled->last_change_time : 0;
   return sessionSuccess(*found);
 }
 
@@ -262,10 +266,8 @@ XrResult XRAPI_CALL xrGetActionStateVector2f(XrSession session, const XrActionSt
   const XrResult result = readState("xrGetActionStateVector2f", session, get_info, XR_ACTION_TYPE_VECTOR2F_INPUT,
                                     XR_TYPE_ACTION_STATE_VECTOR2F, state, sampled, found);
   if (XR_FAILED(result)) return result;
-  state->isActive = sampled->active ? XR_TRUE : XR_FALSE;
+  fillChange(*sampled, *state);
   state->currentState = sampled->active ? sampled->vector : XrVector2f{};
-  state->changedSinceLastSync = sampled->changed ? XR_TRUE : XR_FALSE;
-  state->lastChangeTime = sampled->active ? sampled->last_change_time : 0;
   return sessionSuccess(*found);
 }
 

@@ -20,6 +20,25 @@ std::string padded(std::uint64_t frame) {
   return digits;
 }
 
+// "<first>-<kind>-<index>.<extension>", the first part a frame's ("frame-NNNN") or "latest".
+// Appended: GCC 12 -O3 warns (-Wrestrict) on a literal + std::string.
+std::string imageName(const std::string& first, const char* kind, std::uint32_t index, const char* extension) {
+  std::string name = first;
+  name += '-';
+  name += kind;
+  name += '-';
+  name += std::to_string(index);
+  name += '.';
+  name += extension;
+  return name;
+}
+
+std::string frameName(std::uint64_t frame) {
+  std::string name = "frame-";
+  name += padded(frame);
+  return name;
+}
+
 }  // namespace
 
 std::string frameJsonLine(const SubmittedFrame& frame) {
@@ -63,25 +82,23 @@ bool appendFrameLine(const std::string& folder, const std::string& line) {
 }
 
 std::string eyeImageName(std::uint64_t frame, std::uint32_t eye) {
-  return "frame-" + padded(frame) + "-eye-" + std::to_string(eye) + ".png";
+  return imageName(frameName(frame), "eye", eye, "png");
 }
 
 std::string latestEyeImageName(std::uint32_t eye) {
-  std::string name = "latest-eye-";  // appended: GCC 12 -O3 warns (-Wrestrict) on a literal + std::string
-  name += std::to_string(eye);
-  name += ".png";
-  return name;
+  return imageName("latest", "eye", eye, "png");
 }
 
 std::string depthImageName(std::uint64_t frame, std::uint32_t eye) {
-  return "frame-" + padded(frame) + "-depth-" + std::to_string(eye) + ".pfm";
+  return imageName(frameName(frame), "depth", eye, "pfm");
 }
 
 std::string latestDepthImageName(std::uint32_t eye) {
-  std::string name = "latest-depth-";  // appended: GCC 12 -O3 warns (-Wrestrict) on a literal + std::string
-  name += std::to_string(eye);
-  name += ".pfm";
-  return name;
+  return imageName("latest", "depth", eye, "pfm");
+}
+
+std::string quadImageName(std::uint64_t frame, std::uint32_t quad) {
+  return imageName(frameName(frame), "quad", quad, "png");
 }
 
 namespace {
@@ -121,10 +138,6 @@ bool writePfm(const std::string& folder, const std::string& name, std::uint32_t 
     bytes.insert(bytes.end(), first, first + std::size_t{width} * sizeof(float));
   }
   return writeFile(folder, name, bytes);
-}
-
-std::string quadImageName(std::uint64_t frame, std::uint32_t quad) {
-  return "frame-" + padded(frame) + "-quad-" + std::to_string(quad) + ".png";
 }
 
 bool writePng(const std::string& folder, const std::string& name, std::uint32_t width, std::uint32_t height,
