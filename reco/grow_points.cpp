@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "reco/grower.h"
 
@@ -38,12 +39,31 @@ void Grower::assign(CellState& state, std::uint32_t index, std::uint32_t segment
 // `measure`: also find the nearest assigned point (what the adaptive resolution observes), at
 // the cost of a distance to every assigned point of the cells around that may hold a nearer
 // one (p's own cell first); otherwise each segment's first point within r ends its search.
-Candidate Grower::bestSegment(const Eigen::Vector3d& p, bool measure) {
+// `known`: an assigned point within r of p that the caller has at hand (the frontier point p
+// was found from); its segment is tested first, and cells holding no other segment are passed
+// over without a look at their points.
+Candidate Grower::bestSegment(const Eigen::Vector3d& p, bool measure, const std::optional<KnownNeighbour>& known) {
   Candidate best;
   double best_distance = INFINITY;
   double nearest2 = INFINITY;
   std::uint32_t seen_mask = 0;
   const double radius2 = radius_ * radius_;
+  auto test = [&](std::uint32_t segment) {
+    seen_mask |= 1u << segment;
+    ++snapshot_.points_tested;
+    const Plane& plane = planes_[segment];
+    if (!plane.valid) return;
+    best.tested |= 1u << segment;
+    const double d = plane.distance(p);
+    if (d < thresholds_[segment] && d < best_distance) {
+      best_distance = d;
+      best.segment = static_cast<int>(segment);
+    }
+  };
+  if (known) {
+    nearest2 = known->distance2;
+    test(known->segment);
+  }
   grid_.forEachNear(p, [&](const GridKey& key) {
     const AssignedCell* cell = assigned_.find(key);
     if (cell == nullptr) return;
@@ -59,17 +79,7 @@ Candidate Grower::bestSegment(const Eigen::Vector3d& p, bool measure) {
       const double d2 = (a.position - p).squaredNorm();
       if (d2 > radius2) continue;
       nearest2 = std::min(nearest2, d2);
-      if ((seen_mask >> a.segment) & 1u) continue;
-      seen_mask |= 1u << a.segment;
-      ++snapshot_.points_tested;
-      const Plane& plane = planes_[a.segment];
-      if (!plane.valid) continue;
-      best.tested |= 1u << a.segment;
-      const double d = plane.distance(p);
-      if (d < thresholds_[a.segment] && d < best_distance) {
-        best_distance = d;
-        best.segment = static_cast<int>(a.segment);
-      }
+      if (!((seen_mask >> a.segment) & 1u)) test(a.segment);
     }
   });
   best.nearest_m = std::sqrt(nearest2);
@@ -83,7 +93,12 @@ void Grower::observeSpacing(double nearest_m) {
   ++front_samples_;
 }
 
-// Breadth-first from the cell's frontier; returns whether any point was added.
+// Breadth-first from the cell's frontier; returns whether any point was added. A point that
+// joins has just had its neighbours scanned by the continuity test, which lists the free ones
+// within the cell's radius; the search from that point walks the list instead of the grid
+// (the two scans were half of a full-detail grow). Points from the frontier, or every point
+// where the continuity test is off, are searched in the grid. The order is the grid's either
+// way, so the result is the same.
 bool Grower::processCell(const CellKey& key) {
   ++snapshot_.cells_visited;
   snapshot_.finest_level = std::max(snapshot_.finest_level, key.level + point_levels_);
@@ -93,39 +108,62 @@ bool Grower::processCell(const CellKey& key) {
   working_level_ = key.level;  // new neighbours start at this cell's level
   CellState& state = loaded(key);
   state.processed = true;
-  std::vector<Assigned> queue = std::move(state.frontier);
+  struct NeighbourRun {
+    std::uint32_t begin = 0;
+    std::uint32_t end = 0;
+  };
+  struct Queued {
+    Assigned from;
+    std::optional<NeighbourRun> free_around;  // its run of `listed`, where the continuity test made one
+  };
+  std::vector<Queued> queue;
+  for (const Assigned& a : state.frontier) queue.push_back({a, std::nullopt});
   state.frontier.clear();
+  std::vector<std::uint32_t> listed;
   bool added = false;
   const double radius2 = state.radius * state.radius;
+  auto visit = [&](const Assigned& from, std::uint32_t i, double distance2) {
+    if (state.rejected_epoch[i] == plane_epoch_ && ((state.rejected_by[i] >> from.segment) & 1u)) {
+      ++snapshot_.tests_skipped;
+      return;
+    }
+    // One added point in four is measured: enough for a running mean of the spacing.
+    const bool measure = (neighbour_distance_count_ & 3u) == 0;
+    Candidate candidate = bestSegment(state.points[i], measure, KnownNeighbour{from.segment, distance2});
+    const auto listed_before = static_cast<std::uint32_t>(listed.size());
+    if (candidate.segment >= 0 &&
+        !continuesSurface(state, state.points[i], static_cast<std::uint32_t>(candidate.segment), &listed)) {
+      candidate.segment = -1;
+    }
+    if (candidate.segment < 0) {
+      listed.resize(listed_before);  // nothing is searched from a point that stays free
+      state.rejected_epoch[i] = plane_epoch_;
+      state.rejected_by[i] = candidate.tested;
+      return;
+    }
+    assign(state, i, static_cast<std::uint32_t>(candidate.segment));
+    std::optional<NeighbourRun> free_around;
+    if (options_.continuity > 0.0) free_around = NeighbourRun{listed_before, static_cast<std::uint32_t>(listed.size())};
+    queue.push_back({{state.points[i], static_cast<std::uint32_t>(candidate.segment)}, free_around});
+    neighbour_distance_sum_ += std::sqrt(distance2);
+    ++neighbour_distance_count_;
+    if (measure) observeSpacing(candidate.nearest_m);
+    added = true;
+  };
   for (std::size_t next = 0; next < queue.size(); ++next) {
-    const Assigned from = queue[next];
+    const Assigned from = queue[next].from;
+    if (const std::optional<NeighbourRun> run = queue[next].free_around) {
+      for (std::uint32_t k = run->begin; k < run->end; ++k) {
+        const std::uint32_t i = listed[k];
+        if (!state.assigned[i]) visit(from, i, (state.points[i] - from.position).squaredNorm());
+      }
+      continue;
+    }
     state.grid.forEachAround(from.position, [&](const GridKey& grid_key) {
       for (std::uint32_t i : state.by_grid.at(grid_key)) {
         if (state.assigned[i]) continue;
         const double distance2 = (state.points[i] - from.position).squaredNorm();
-        if (distance2 > radius2) continue;
-        if (state.rejected_epoch[i] == plane_epoch_ && ((state.rejected_by[i] >> from.segment) & 1u)) {
-          ++snapshot_.tests_skipped;
-          continue;
-        }
-        // One added point in four is measured: enough for a running mean of the spacing.
-        const bool measure = (neighbour_distance_count_ & 3u) == 0;
-        Candidate candidate = bestSegment(state.points[i], measure);
-        if (candidate.segment >= 0 &&
-            !continuesSurface(state, state.points[i], static_cast<std::uint32_t>(candidate.segment))) {
-          candidate.segment = -1;
-        }
-        if (candidate.segment < 0) {
-          state.rejected_epoch[i] = plane_epoch_;
-          state.rejected_by[i] = candidate.tested;
-          continue;
-        }
-        assign(state, i, static_cast<std::uint32_t>(candidate.segment));
-        queue.push_back({state.points[i], static_cast<std::uint32_t>(candidate.segment)});
-        neighbour_distance_sum_ += std::sqrt(distance2);
-        ++neighbour_distance_count_;
-        if (measure) observeSpacing(candidate.nearest_m);
-        added = true;
+        if (distance2 <= radius2) visit(from, i, distance2);
       }
     });
   }
@@ -148,22 +186,33 @@ bool Grower::processCell(const CellKey& key) {
 // the mean of a dozen neighbours is four times surer than one point. Against the segment's own
 // neighbours, not the plane, so that a seed plane still turned by its first few points grows.
 // Points of other segments (the wall along a floor's edge) are left out; with fewer than
-// kMinContinuityPoints on either side there is nothing to compare.
-bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment) const {
+// kMinContinuityPoints on either side there is nothing to compare. Appends the free points
+// within r of p, in the grid's order, to `free_around`.
+bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment,
+                              std::vector<std::uint32_t>* free_around) const {
   if (options_.continuity <= 0.0) return true;
+  // In single precision relative to the grid's origin (GridIndex::bucket): millimetres within
+  // micrometres over tens of metres.
   const Plane& plane = planes_[segment];
-  const double window = 2.0 * thresholds_[segment];
-  double free_sum = 0.0;
-  double own_sum = 0.0;
+  const Eigen::Vector3f normal = plane.normal.cast<float>();
+  const float origin_offset = static_cast<float>(plane.signedDistance(state.grid.origin()));
+  const Eigen::Vector3f at = (p - state.grid.origin()).cast<float>();
+  const float window = static_cast<float>(2.0 * thresholds_[segment]);
+  const float radius2 = static_cast<float>(state.radius * state.radius);
+  const std::uint8_t own = static_cast<std::uint8_t>(segment + 1);
+  float free_sum = 0.0f;
+  float own_sum = 0.0f;
   std::uint32_t free_count = 0;
   std::uint32_t own_count = 0;
-  const double radius2 = state.radius * state.radius;
   state.grid.forEachAround(p, [&](const GridKey& key) {
-    for (std::uint32_t j : state.by_grid.at(key)) {
-      const std::uint8_t owner = state.assigned[j];
-      if (owner != 0 && owner != segment + 1) continue;
-      if ((state.points[j] - p).squaredNorm() > radius2) continue;
-      const double d = plane.signedDistance(state.points[j]);
+    const GridIndex::Bucket bucket = state.by_grid.bucket(key);
+    for (std::size_t k = 0; k < bucket.indices.size(); ++k) {
+      const std::uint8_t owner = state.assigned[bucket.indices[k]];
+      if (owner != 0 && owner != own) continue;
+      const Eigen::Vector3f& q = bucket.offsets[k];
+      if ((q - at).squaredNorm() > radius2) continue;
+      if (owner == 0) free_around->push_back(bucket.indices[k]);
+      const float d = normal.dot(q) + origin_offset;
       if (std::abs(d) >= window) continue;
       if (owner == 0) {
         free_sum += d;
@@ -175,7 +224,8 @@ bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, 
     }
   });
   if (free_count < kMinContinuityPoints || own_count < kMinContinuityPoints) return true;
-  return std::abs(free_sum / free_count - own_sum / own_count) <= options_.continuity * thresholds_[segment];
+  return std::abs(free_sum / static_cast<float>(free_count) - own_sum / static_cast<float>(own_count)) <=
+         options_.continuity * thresholds_[segment];
 }
 
 void Grower::refit(std::uint32_t segment) {

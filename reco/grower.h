@@ -139,6 +139,7 @@ class Grower {
   };
   std::uint32_t cellLevelFor(double width, std::uint32_t finest) const;
   void claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
+  void dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
   double seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
                         double window) const;
   std::vector<SeedPlane> seedPlanesMeasuringThreshold(std::span<const Eigen::Vector3d> points, SeedOptions options);
@@ -171,10 +172,16 @@ class Grower {
   // grow_points.cpp: the growth, point by point (section 3.5)
   void addToGrid(const Eigen::Vector3d& p, std::uint32_t segment);
   void assign(CellState& state, std::uint32_t index, std::uint32_t segment);
-  Candidate bestSegment(const Eigen::Vector3d& p, bool measure);
+  struct KnownNeighbour {
+    std::uint32_t segment;
+    double distance2;
+  };
+  Candidate bestSegment(const Eigen::Vector3d& p, bool measure,
+                        const std::optional<KnownNeighbour>& known = std::nullopt);
   void observeSpacing(double nearest_m);
   bool processCell(const CellKey& key);
-  bool continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment) const;
+  bool continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment,
+                        std::vector<std::uint32_t>* free_around) const;
   void refit(std::uint32_t segment);
   void updateThreshold(std::uint32_t segment);
 
@@ -202,6 +209,9 @@ class Grower {
   static constexpr double kSlabReach = 4.0 * M_PI / 1.18;
   // Cells at least this many r wide (seed): at the octree's own spacing they are 64 r wide.
   static constexpr double kMinCellRadii = 8.0;
+  // The seed deals its gathered cells' points out to cells at most this many levels finer
+  // (dealSeedCells: a table of 8^levels per gathered cell); further, it gathers again.
+  static constexpr std::uint32_t kMaxDealLevels = 6;
   // A cell's own search radius is at least r / kMaxRadiusShrink (indexCell).
   static constexpr double kMaxRadiusShrink = 8.0;
   // The seed planes' noise is measured on at least this many inliers, else on patches alone.
@@ -232,6 +242,9 @@ class Grower {
   const GrowProgress& progress_;
   double radius_;                  // r: the parameters', or wider where the data is sparser (adaptToDataSpacing)
   bool radius_from_data_ = false;  // r follows the seed's data spacing, not d's
+  // The seed planes' noise, for the reach (reachFor): the snapshot's where t_p was measured,
+  // measured all the same where the user gave t_p.
+  double reach_sigma_ = 0.0;
   PointGrid grid_;
   CellClaims claims_;
   Membership membership_;

@@ -36,6 +36,8 @@ class PointGrid {
   // centimetres would still fit, relative ones keep the hash well spread.
   PointGrid(const Eigen::Vector3d& origin, double step) : origin_(origin), inverse_(1.0 / step) {}
 
+  const Eigen::Vector3d& origin() const { return origin_; }
+
   GridKey keyOf(const Eigen::Vector3d& p) const {
     const Eigen::Vector3d g = (p - origin_) * inverse_;
     return {static_cast<std::int64_t>(std::floor(g.x())), static_cast<std::int64_t>(std::floor(g.y())),

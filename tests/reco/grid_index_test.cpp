@@ -41,6 +41,16 @@ TEST(GridIndex, BucketsEveryPointOnceInAscendingOrder) {
   }
   EXPECT_EQ(found, points.size());
   EXPECT_TRUE(index.at({1000, 1000, 1000}).empty());
+  // bucket(): the same indices, each with its position relative to the grid's origin in floats.
+  for (const auto& [key, indices] : expected) {
+    const GridIndex::Bucket bucket = index.bucket({std::get<0>(key), std::get<1>(key), std::get<2>(key)});
+    ASSERT_EQ(std::vector<std::uint32_t>(bucket.indices.begin(), bucket.indices.end()), indices);
+    ASSERT_EQ(bucket.offsets.size(), indices.size());
+    for (std::size_t k = 0; k < indices.size(); ++k) {
+      EXPECT_EQ(bucket.offsets[k], (points[indices[k]] - origin).cast<float>());
+    }
+  }
+  EXPECT_TRUE(index.bucket({1000, 1000, 1000}).indices.empty());
   EXPECT_TRUE(GridIndex().at({0, 0, 0}).empty());
 }
 
