@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "engine/core/bucket_index.h"
 #include "reco/point_grid.h"
 
 namespace plumb::reco {
@@ -24,10 +25,7 @@ class GridIndex {
   std::uint32_t medianCellPoints() const { return median_cell_points_; }
 
   // The indices of the points in grid cell `key`, ascending; empty when none.
-  std::span<const std::uint32_t> at(const GridKey& key) const {
-    const Slot* s = find(key);
-    return s == nullptr ? std::span<const std::uint32_t>() : std::span(order_.data() + s->begin, s->end - s->begin);
-  }
+  std::span<const std::uint32_t> at(const GridKey& key) const { return cells_.at(key); }
 
   // The points of grid cell `key`: their indices as at() gives them and, in the same order,
   // their positions relative to the grid's origin in single precision. A scan of every point
@@ -38,31 +36,14 @@ class GridIndex {
     std::span<const Eigen::Vector3f> offsets;
   };
   Bucket bucket(const GridKey& key) const {
-    const Slot* s = find(key);
-    if (s == nullptr) return {};
-    return {std::span(order_.data() + s->begin, s->end - s->begin),
-            std::span(offsets_.data() + s->begin, s->end - s->begin)};
+    const auto* run = cells_.find(key);
+    if (run == nullptr) return {};
+    return {cells_.items(*run), std::span(offsets_.data() + run->begin, run->end - run->begin)};
   }
 
  private:
-  struct Slot {
-    GridKey key{0, 0, 0};
-    std::uint32_t begin = 0;
-    std::uint32_t end = 0;  // 0: an empty slot (a bucket holds at least one point)
-  };
-  const Slot* find(const GridKey& key) const {
-    if (slots_.empty()) return nullptr;
-    for (std::size_t slot = lowBitsHash(key) & mask_;; slot = (slot + 1) & mask_) {
-      const Slot& s = slots_[slot];
-      if (s.end == 0) return nullptr;
-      if (s.key == key) return &s;
-    }
-  }
-
-  std::vector<std::uint32_t> order_;      // point indices grouped by grid cell, ascending within one
-  std::vector<Eigen::Vector3f> offsets_;  // the points' positions relative to the grid's origin, as order_
-  std::vector<Slot> slots_;               // a power of two, at most half full
-  std::size_t mask_ = 0;
+  BucketIndex<GridKey, GridKeyLowBitsHash> cells_;
+  std::vector<Eigen::Vector3f> offsets_;  // the points' positions relative to the grid's origin, as cells_.order()
   std::uint32_t median_cell_points_ = 0;
 };
 

@@ -58,7 +58,7 @@ bool Grower::bridge(std::uint32_t s, double reach) {
       taken.emplace_back(key, i);
     }
   }
-  for (const auto& [key, i] : taken) assign(cells_[key], i, s);
+  for (const auto& [key, i] : taken) assign(key, cells_[key], i, s);
   if (!taken.empty()) refit(s);
   return !taken.empty();
 }

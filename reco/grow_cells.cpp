@@ -58,14 +58,14 @@ void Grower::enqueue(const CellKey& key) {
   queue_.push({octree_.cube().squaredDistance(key, array(parameters_.seed)), key});
 }
 
-// Hands p to the frontier of every claimed cell within r of it other than the one being
-// processed (whose breadth-first search has p already), claiming cells where none is yet.
-// During the seed no cell is processed, and p's own cell gets it too.
-void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment) {
+// Hands p, a point of cell `holder`, to the frontier of every claimed cell within r of it other
+// than the one being processed (whose breadth-first search has p already), claiming cells where
+// none is yet. Outside processCell (the seed, a bridge) p's own cell gets it too.
+void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment, const CellKey& holder) {
   // Cells are at least 8 search radii wide: only the sides of the box of p's cell that p is
   // within r of lead to a neighbour (the other offsets land in p's cell or in a neighbour
-  // found already). The seed's claims are all of one level, so there p's cell is its owner.
-  const lod::Box3 box = processing_box_ ? *processing_box_ : octree_.cube().cellBox(*claims_.ownerAt(array(p)));
+  // found already).
+  const lod::Box3 box = octree_.cube().cellBox(holder);
   std::array<std::array<int, 3>, 3> steps{};  // per axis: the offsets to try, -1, 0 or +1
   std::array<std::size_t, 3> step_count{};
   for (std::size_t a = 0; a < 3; ++a) {
@@ -79,9 +79,12 @@ void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment) {
   for (std::size_t iz = 0; iz < step_count[2]; ++iz) {
     for (std::size_t iy = 0; iy < step_count[1]; ++iy) {
       for (std::size_t ix = 0; ix < step_count[0]; ++ix) {
-        const Eigen::Vector3d q = p + radius_ * Eigen::Vector3d(steps[0][ix], steps[1][iy], steps[2][iz]);
         bool created = false;
-        const CellKey key = claims_.claimAt(array(q), working_level_, octree_.header().depth, created);
+        const bool own = ix == 0 && iy == 0 && iz == 0;  // steps[a][0] is 0
+        const CellKey key =
+            own ? holder
+                : claims_.claimAt(array(p + radius_ * Eigen::Vector3d(steps[0][ix], steps[1][iy], steps[2][iz])),
+                                  working_level_, octree_.header().depth, created);
         const auto end = seen.begin() + static_cast<std::ptrdiff_t>(count);
         if (std::find(seen.begin(), end, key) != end) continue;
         seen[count++] = key;

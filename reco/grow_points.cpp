@@ -17,8 +17,8 @@ void Grower::addToGrid(const Eigen::Vector3d& p, std::uint32_t segment) {
   cell.points.push_back({p, segment});
 }
 
-// Records point i of a cell as joining `segment`.
-void Grower::assign(CellState& state, std::uint32_t index, std::uint32_t segment) {
+// Records point `index` of cell `key` as joining `segment`.
+void Grower::assign(const CellKey& key, CellState& state, std::uint32_t index, std::uint32_t segment) {
   membership_.assign(state.refs[index], segment);
   state.assigned[index] = static_cast<std::uint8_t>(segment + 1);
   const Eigen::Vector3d& p = state.points[index];
@@ -31,7 +31,7 @@ void Grower::assign(CellState& state, std::uint32_t index, std::uint32_t segment
   // current regression): refit whenever the support has grown by a tenth, so a seed plane
   // from a few points straightens out long before its error matters, at O(log n) refits.
   if (regressions_[segment].count() >= fitted_count_[segment] + fitted_count_[segment] / 10 + 8) refit(segment);
-  spreadFrontier(p, segment);
+  spreadFrontier(p, segment, key);
 }
 
 // The segment an unassigned point p joins: the nearest plane within its threshold among the segments
@@ -104,7 +104,6 @@ bool Grower::processCell(const CellKey& key) {
   snapshot_.finest_level = std::max(snapshot_.finest_level, key.level + point_levels_);
   snapshot_.coarsest_level = std::min(snapshot_.coarsest_level, key.level + point_levels_);
   processing_ = key;
-  processing_box_ = octree_.cube().cellBox(key);
   working_level_ = key.level;  // new neighbours start at this cell's level
   CellState& state = loaded(key);
   state.processed = true;
@@ -141,7 +140,7 @@ bool Grower::processCell(const CellKey& key) {
       state.rejected_by[i] = candidate.tested;
       return;
     }
-    assign(state, i, static_cast<std::uint32_t>(candidate.segment));
+    assign(key, state, i, static_cast<std::uint32_t>(candidate.segment));
     std::optional<NeighbourRun> free_around;
     if (options_.continuity > 0.0) free_around = NeighbourRun{listed_before, static_cast<std::uint32_t>(listed.size())};
     queue.push_back({{state.points[i], static_cast<std::uint32_t>(candidate.segment)}, free_around});
@@ -168,7 +167,6 @@ bool Grower::processCell(const CellKey& key) {
     });
   }
   processing_.reset();
-  processing_box_.reset();
   if (added) {
     for (std::uint32_t s = 0; s < regressions_.size(); ++s) {
       if (grown_[s]) refit(s);

@@ -161,7 +161,7 @@ class Grower {
   CellState& loaded(const CellKey& key);
   void indexCell(CellState& state) const;
   void enqueue(const CellKey& key);
-  void spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment);
+  void spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment, const CellKey& holder);
   std::optional<double> densityRatio() const;
   bool adapt(const CellKey& key);
   void replaceByChildren(const CellKey& key);
@@ -171,7 +171,7 @@ class Grower {
 
   // grow_points.cpp: the growth, point by point (section 3.5)
   void addToGrid(const Eigen::Vector3d& p, std::uint32_t segment);
-  void assign(CellState& state, std::uint32_t index, std::uint32_t segment);
+  void assign(const CellKey& key, CellState& state, std::uint32_t index, std::uint32_t segment);
   struct KnownNeighbour {
     std::uint32_t segment;
     double distance2;
@@ -277,8 +277,7 @@ class Grower {
   std::priority_queue<std::pair<double, CellKey>, std::vector<std::pair<double, CellKey>>, std::greater<>> queue_;
   std::unordered_set<CellKey, lod::CellKeyHash> queued_;
   std::optional<CellKey> processing_;  // the cell whose breadth-first search is running
-  std::optional<lod::Box3> processing_box_;
-  std::uint32_t plane_epoch_ = 0;  // counts the refits: a rejected point's test holds until the next
+  std::uint32_t plane_epoch_ = 0;      // counts the refits: a rejected point's test holds until the next
   double neighbour_distance_sum_ = 0.0;
   std::uint64_t neighbour_distance_count_ = 0;
   double front_spacing_ = 0.0;

@@ -30,6 +30,10 @@ inline std::size_t lowBitsHash(const GridKey& key) {
   return static_cast<std::size_t>((GridKeyHash{}(key)*0x9E3779B97F4A7C15ULL) >> 17);
 }
 
+struct GridKeyLowBitsHash {
+  std::size_t operator()(const GridKey& key) const { return lowBitsHash(key); }
+};
+
 class PointGrid {
  public:
   // Positions are taken relative to `origin` (the seed): UTM coordinates divided by a few

@@ -395,8 +395,8 @@ void Grower::seed() {
       from_sample ? pointsOnPlanes(points, planes, parameters_.plane_threshold_m) : findPlanes(points, seed_options);
   snapshot_.plane_threshold_m = parameters_.plane_threshold_m;
   // A t_p given says nothing of the noise, and a reach of two spacings in a slab thicker than
-  // that leaves the slab's outer points out (a 10 M-point room at 5 mm noise with --tp 0.015:
-  // the floor grew 5 % fewer points, its RMS 4.6 mm).
+  // that leaves the slab's outer points out (a 100 M-point room at 5 mm noise with --tp 0.015:
+  // r 5.5 mm, 31.7 M points grown; with the noise measured, r 7.5 mm and 32.3 M).
   reach_sigma_ = parameters_.plane_threshold_from_data ? snapshot_.noise_sigma_m
                                                        : seedPlaneNoise(points, planes, parameters_.plane_threshold_m);
   adaptToDataSpacing(points, planes);
@@ -437,7 +437,7 @@ void Grower::seed() {
     for (std::uint32_t i : planes[s].inliers) {
       const auto& [key, index] = sphere.origin[i];
       CellState& state = cells_[key];
-      if (!state.assigned[index]) assign(state, index, s);
+      if (!state.assigned[index]) assign(key, state, index, s);
     }
     refit(s);
   }

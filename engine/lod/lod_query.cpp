@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "engine/core/bucket_index.h"
 #include "engine/lod/node_cache.h"
 
 namespace plumb::lod {
@@ -75,7 +76,10 @@ namespace {
 void appendNodePoints(NodeCache& cache, const NodeInfo& node, std::vector<CellPoint>& result) {
   const auto points = cache.get(node.key);
   const auto node_index = static_cast<std::uint32_t>(&node - cache.octree().nodes().data());
-  result.reserve(result.size() + points->size());
+  // Geometrically: a cell that gathers many descendant nodes grew its vector by one node at a
+  // time when this reserved the exact size, copying it whole for every node.
+  const std::size_t needed = result.size() + points->size();
+  if (needed > result.capacity()) result.reserve(std::max(needed, 2 * result.capacity()));
   for (std::size_t i = 0; i < points->size(); ++i) {
     result.push_back({points->position(i), {node_index, static_cast<std::uint32_t>(i)}});
   }
@@ -83,12 +87,11 @@ void appendNodePoints(NodeCache& cache, const NodeInfo& node, std::vector<CellPo
 
 }  // namespace
 
-// An ancestor's points ordered by their cell at one deeper level.
+// An ancestor's points grouped by their cell at one deeper level.
 struct CellPointIndex::SortedNode {
   std::shared_ptr<const NodePoints> points;
   std::uint32_t node_index = 0;
-  std::vector<CellKey> cells;        // ascending
-  std::vector<std::uint32_t> order;  // order[i]: the point in cells[i]
+  BucketIndex<CellKey, CellKeyHash> cells;  // item i: point i
 };
 
 CellPointIndex::CellPointIndex(NodeCache& cache) : cache_(cache) {}
@@ -103,17 +106,9 @@ const CellPointIndex::SortedNode& CellPointIndex::sorted(const NodeInfo& node, s
   slot->points = cache_.get(node.key);
   slot->node_index = node_index;
   const NodePoints& points = *slot->points;
-  std::vector<std::pair<CellKey, std::uint32_t>> keyed(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    keyed[i] = {octree.cube().cellAt(points.position(i), level), static_cast<std::uint32_t>(i)};
-  }
-  std::sort(keyed.begin(), keyed.end());
-  slot->cells.reserve(keyed.size());
-  slot->order.reserve(keyed.size());
-  for (const auto& [cell, i] : keyed) {
-    slot->cells.push_back(cell);
-    slot->order.push_back(i);
-  }
+  std::vector<CellKey> cells(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) cells[i] = octree.cube().cellAt(points.position(i), level);
+  slot->cells = BucketIndex<CellKey, CellKeyHash>(cells);
   return *slot;
 }
 
@@ -125,9 +120,7 @@ std::vector<CellPoint> CellPointIndex::pointsInCell(const CellKey& key) {
     const NodeInfo* node = octree.find(*level);
     if (node == nullptr) continue;
     const SortedNode& ancestor = sorted(*node, key.level);
-    const auto [first, last] = std::equal_range(ancestor.cells.begin(), ancestor.cells.end(), key);
-    for (auto it = first; it != last; ++it) {
-      const std::uint32_t i = ancestor.order[static_cast<std::size_t>(it - ancestor.cells.begin())];
+    for (const std::uint32_t i : ancestor.cells.at(key)) {
       result.push_back({ancestor.points->position(i), {ancestor.node_index, i}});
     }
   }

@@ -57,9 +57,10 @@ struct CellPoint {
 // node and those of its ancestors that lie in the cell (Cube::cellAt decides, so each point of
 // levels 0..key.level belongs to exactly one cell of key.level). An ancestor holds the points of
 // thousands of cells of a deep level: scanning all of them for every cell made a cell's cost
-// follow the depth and the nodes' sizes, not what it returns. Instead each ancestor is sorted once
-// per level asked by the cell its points fall in, and a cell's points are a binary search away.
-// Not thread-safe: one per user (a grow). Keeps the nodes it has sorted alive while it lives.
+// follow the depth and the nodes' sizes, not what it returns. Instead each ancestor's points are
+// grouped once per level asked by the cell they fall in (a BucketIndex), and a cell's points
+// are a table look-up away. Not thread-safe: one per user (a grow). Keeps the nodes it has
+// grouped alive while it lives.
 class CellPointIndex {
  public:
   explicit CellPointIndex(NodeCache& cache);
@@ -68,8 +69,8 @@ class CellPointIndex {
   CellPointIndex& operator=(const CellPointIndex&) = delete;
 
   // The points of `key`, its own node's first, then each ancestor's from the nearest up, each in
-  // storage order. Cost: the points returned plus a binary search per ancestor; the first query
-  // of a level that meets an ancestor sorts that ancestor, O(n log n) for its n points. Loads
+  // storage order. Cost: the points returned plus a look-up per ancestor; the first query of a
+  // level that meets an ancestor groups that ancestor's points, O(n) for its n points. Loads
   // through the cache; blocks on nodes not yet loaded.
   std::vector<CellPoint> pointsInCell(const CellKey& key);
 
