@@ -14,6 +14,11 @@ CellState& Grower::loaded(const CellKey& key) {
   if (!state.loaded) {
     state.loaded = true;
     const std::vector<lod::CellPoint> points = cell_points_.pointsInCell(key, key.level + point_levels_);
+    state.points.reserve(points.size());
+    state.refs.reserve(points.size());
+    state.assigned.reserve(points.size());
+    state.rejected_epoch.reserve(points.size());
+    state.rejected_by.reserve(points.size());
     for (const lod::CellPoint& p : points) {
       const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
       if (options_.keep && !options_.keep(position)) continue;  // cut away by the view's section
@@ -60,8 +65,11 @@ void Grower::enqueue(const CellKey& key) {
 
 // Hands p, a point of cell `holder`, to the frontier of every claimed cell within r of it other
 // than the one being processed (whose breadth-first search has p already), claiming cells where
-// none is yet. Outside processCell (the seed, a bridge) p's own cell gets it too.
-void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment, const CellKey& holder) {
+// none is yet. Outside processCell (the seed, a bridge) p's own cell gets it too, and is queued
+// with its first frontier point: no cell waits for a level then, so one with a frontier is
+// queued already (the seed hands over every inlier this way).
+void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment, const CellKey& holder,
+                            CellState& holder_state) {
   // Cells are at least 8 search radii wide: only the sides of the box of p's cell that p is
   // within r of lead to a neighbour (the other offsets land in p's cell or in a neighbour
   // found already).
@@ -79,12 +87,17 @@ void Grower::spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment, con
   for (std::size_t iz = 0; iz < step_count[2]; ++iz) {
     for (std::size_t iy = 0; iy < step_count[1]; ++iy) {
       for (std::size_t ix = 0; ix < step_count[0]; ++ix) {
+        if (ix == 0 && iy == 0 && iz == 0) {  // steps[a][0] is 0: p's own cell, the first
+          seen[count++] = holder;
+          if (processing_) continue;
+          if (holder_state.frontier.empty()) enqueue(holder);
+          holder_state.frontier.push_back({p, segment});
+          continue;
+        }
         bool created = false;
-        const bool own = ix == 0 && iy == 0 && iz == 0;  // steps[a][0] is 0
         const CellKey key =
-            own ? holder
-                : claims_.claimAt(array(p + radius_ * Eigen::Vector3d(steps[0][ix], steps[1][iy], steps[2][iz])),
-                                  working_level_, octree_.header().depth, created);
+            claims_.claimAt(array(p + radius_ * Eigen::Vector3d(steps[0][ix], steps[1][iy], steps[2][iz])),
+                            working_level_, octree_.header().depth, created);
         const auto end = seen.begin() + static_cast<std::ptrdiff_t>(count);
         if (std::find(seen.begin(), end, key) != end) continue;
         seen[count++] = key;

@@ -31,7 +31,7 @@ void Grower::assign(const CellKey& key, CellState& state, std::uint32_t index, s
   // current regression): refit whenever the support has grown by a tenth, so a seed plane
   // from a few points straightens out long before its error matters, at O(log n) refits.
   if (regressions_[segment].count() >= fitted_count_[segment] + fitted_count_[segment] / 10 + 8) refit(segment);
-  spreadFrontier(p, segment, key);
+  spreadFrontier(p, segment, key, state);
 }
 
 // The segment an unassigned point p joins: the nearest plane within its threshold among the segments

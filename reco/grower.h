@@ -50,6 +50,8 @@ inline std::array<double, 3> array(const Eigen::Vector3d& p) {
 class Membership {
  public:
   explicit Membership(const lod::Octree& octree) : octree_(octree) {}
+  Membership(const Membership&) = delete;
+  Membership& operator=(const Membership&) = delete;
   // 0 for none, s + 1 for segment s.
   std::uint8_t flag(const lod::PointRef& ref) { return node(ref.node)[ref.index]; }
   void assign(const lod::PointRef& ref, std::uint32_t segment) {
@@ -73,12 +75,18 @@ class Membership {
 
  private:
   std::vector<std::uint8_t>& node(std::uint32_t index) {
+    if (last_ != nullptr && last_index_ == index) return *last_;
     auto [it, inserted] = nodes_.try_emplace(index);
     if (inserted) it->second.assign(octree_.nodes()[index].point_count, 0);
-    return it->second;
+    last_index_ = index;
+    last_ = &it->second;
+    return *last_;
   }
   const lod::Octree& octree_;
   std::unordered_map<std::uint32_t, std::vector<std::uint8_t>> nodes_;
+  // The node asked for last: points come a node at a time (a cell's load, the seed's inliers).
+  std::uint32_t last_index_ = 0;
+  std::vector<std::uint8_t>* last_ = nullptr;
 };
 
 struct Assigned {
@@ -140,8 +148,8 @@ class Grower {
   std::uint32_t cellLevelFor(double width, std::uint32_t finest) const;
   void claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
   void dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
-  double seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
-                        double window) const;
+  double seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes, double window,
+                        std::size_t stride = 1) const;
   std::vector<SeedPlane> seedPlanesMeasuringThreshold(std::span<const Eigen::Vector3d> points, SeedOptions options);
   std::vector<SeedPlane> findPlanes(std::span<const Eigen::Vector3d> points, const SeedOptions& options);
   std::uint32_t seedSampleLevel(std::uint32_t finest) const;
@@ -161,7 +169,7 @@ class Grower {
   CellState& loaded(const CellKey& key);
   void indexCell(CellState& state) const;
   void enqueue(const CellKey& key);
-  void spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment, const CellKey& holder);
+  void spreadFrontier(const Eigen::Vector3d& p, std::uint32_t segment, const CellKey& holder, CellState& holder_state);
   std::optional<double> densityRatio() const;
   bool adapt(const CellKey& key);
   void replaceByChildren(const CellKey& key);
@@ -216,6 +224,8 @@ class Grower {
   static constexpr double kMaxRadiusShrink = 8.0;
   // The seed planes' noise is measured on at least this many inliers, else on patches alone.
   static constexpr std::size_t kMinNoiseResiduals = 30;
+  // The noise for the reach where t_p is given is measured on about this many inliers.
+  static constexpr std::size_t kReachNoiseResiduals = 20000;
   static constexpr std::uint32_t kNeverTested = ~std::uint32_t{0};
   static constexpr std::size_t kMaxSegments = 32;  // segment masks are 32 bits wide
   // segmentsAround: a point on a segment's border has the segment's points to one side, their

@@ -233,7 +233,9 @@ void Grower::dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
     for (std::uint32_t& count : rank_count) first += std::exchange(count, first);
     for (std::uint32_t i = 0; i < n; ++i) by_rank[rank_count[rank[i]]++] = i;
 
-    std::vector<std::uint32_t> number(std::size_t{per_axis} * per_axis * per_axis, 0);  // dealt number + 1, 0: none
+    std::vector<std::uint32_t> local_count(std::size_t{per_axis} * per_axis * per_axis, 0);
+    for (const std::uint32_t l : local) ++local_count[l];
+    std::vector<std::uint32_t> number(local_count.size(), 0);  // dealt number + 1, 0: none
     auto& places = moved[gathered_key];
     places.assign(n, {0, 0});
     for (std::uint32_t i : by_rank) {
@@ -246,7 +248,14 @@ void Grower::dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
                           (gathered_key.z << steps) + lz};
         if (cube.squaredDistance(key, array(parameters_.seed)) > rs * rs) continue;  // not claimed
         dealt.emplace_back(key, CellState{});
-        dealt.back().second.loaded = true;
+        CellState& state = dealt.back().second;
+        state.loaded = true;
+        const std::uint32_t count = local_count[local[i]];
+        state.points.reserve(count);
+        state.refs.reserve(count);
+        state.assigned.reserve(count);
+        state.rejected_epoch.reserve(count);
+        state.rejected_by.reserve(count);
         cell_number = static_cast<std::uint32_t>(dealt.size());
       }
       CellState& state = dealt[cell_number - 1].second;
@@ -396,9 +405,14 @@ void Grower::seed() {
   snapshot_.plane_threshold_m = parameters_.plane_threshold_m;
   // A t_p given says nothing of the noise, and a reach of two spacings in a slab thicker than
   // that leaves the slab's outer points out (a 100 M-point room at 5 mm noise with --tp 0.015:
-  // r 5.5 mm, 31.7 M points grown; with the noise measured, r 7.5 mm and 32.3 M).
-  reach_sigma_ = parameters_.plane_threshold_from_data ? snapshot_.noise_sigma_m
-                                                       : seedPlaneNoise(points, planes, parameters_.plane_threshold_m);
+  // r 5.5 mm, 31.7 M points grown; with the noise measured, r 7.5 mm and 32.3 M). About
+  // kReachNoiseResiduals of the inliers tell it within a percent.
+  std::size_t inliers = 0;
+  for (const SeedPlane& plane : planes) inliers += plane.inliers.size();
+  reach_sigma_ = parameters_.plane_threshold_from_data
+                     ? snapshot_.noise_sigma_m
+                     : seedPlaneNoise(points, planes, parameters_.plane_threshold_m,
+                                      std::max<std::size_t>(1, inliers / kReachNoiseResiduals));
   adaptToDataSpacing(points, planes);
   gathering_seed_ = false;
   const std::uint32_t cell_level = cellLevelFor(kMinCellRadii * radius_, point_level);
@@ -434,10 +448,15 @@ void Grower::seed() {
   for (std::uint32_t s = 0; s < planes.size(); ++s) {
     planes_[s] = planes[s].plane;  // the RANSAC refit, until the regression takes over
     updateThreshold(s);
+    const CellKey* last_key = nullptr;  // an inlier's cell is most often the previous one's
+    CellState* state = nullptr;
     for (std::uint32_t i : planes[s].inliers) {
       const auto& [key, index] = sphere.origin[i];
-      CellState& state = cells_[key];
-      if (!state.assigned[index]) assign(key, state, index, s);
+      if (last_key == nullptr || !(key == *last_key)) {
+        last_key = &key;
+        state = &cells_[key];
+      }
+      if (!state->assigned[index]) assign(key, *state, index, s);
     }
     refit(s);
   }
@@ -447,12 +466,13 @@ void Grower::seed() {
 
 // The noise of seed planes found within `window`: their inliers' residuals, pooled, leaving out
 // those within the window of another plane (near a corner, the strips of the meeting surfaces).
-// 0 with too few residuals to tell.
+// 0 with too few residuals to tell. `stride`: every stride-th inlier only.
 double Grower::seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes,
-                              double window) const {
+                              double window, std::size_t stride) const {
   std::vector<double> residuals;
   for (const SeedPlane& plane : planes) {
-    for (std::uint32_t i : plane.inliers) {
+    for (std::size_t k = 0; k < plane.inliers.size(); k += stride) {
+      const std::uint32_t i = plane.inliers[k];
       const bool near_another = std::any_of(planes.begin(), planes.end(), [&](const SeedPlane& other) {
         return &other != &plane && other.plane.distance(points[i]) < window;
       });
