@@ -38,9 +38,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numeric>
 #include <span>
-#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -272,20 +270,29 @@ void Grower::dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
     key = dealt[cell_number].first;
     index = dealt_index;
   }
+  // Claimed and inserted as claimSeedCells does: every cell of the box that meets the sphere, in
+  // z, y, x order, those without a point too (cells_'s order is the final fit's).
+  std::unordered_map<CellKey, std::uint32_t, lod::CellKeyHash> dealt_number;
+  for (std::uint32_t d = 0; d < dealt.size(); ++d) dealt_number.emplace(dealt[d].first, d);
   forgetCells();
-  std::vector<std::uint32_t> order(dealt.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const CellKey& ka = dealt[a].first;
-    const CellKey& kb = dealt[b].first;
-    return std::tie(ka.z, ka.y, ka.x) < std::tie(kb.z, kb.y, kb.x);
-  });
   sphere.cells.clear();
-  for (std::uint32_t d : order) {
-    auto& [key, state] = dealt[d];
-    claims_.claim(key);
-    indexCell(cells_[key] = std::move(state));
-    sphere.cells.push_back(key);
+  const auto seed_array = array(parameters_.seed);
+  const CellKey low = cube.cellAt({seed_array[0] - rs, seed_array[1] - rs, seed_array[2] - rs}, cell_level);
+  const CellKey high = cube.cellAt({seed_array[0] + rs, seed_array[1] + rs, seed_array[2] + rs}, cell_level);
+  for (std::uint32_t z = low.z; z <= high.z; ++z) {
+    for (std::uint32_t y = low.y; y <= high.y; ++y) {
+      for (std::uint32_t x = low.x; x <= high.x; ++x) {
+        const CellKey key{cell_level, x, y, z};
+        if (cube.squaredDistance(key, seed_array) > rs * rs) continue;
+        claims_.claim(key);
+        CellState& state = cells_[key];
+        if (const auto it = dealt_number.find(key); it != dealt_number.end())
+          state = std::move(dealt[it->second].second);
+        state.loaded = true;
+        indexCell(state);
+        sphere.cells.push_back(key);
+      }
+    }
   }
   base_level_ = working_level_ = cell_level;
 }
@@ -416,7 +423,7 @@ void Grower::seed() {
   adaptToDataSpacing(points, planes);
   gathering_seed_ = false;
   const std::uint32_t cell_level = cellLevelFor(kMinCellRadii * radius_, point_level);
-  if (cell_level > gather_level && cell_level - gather_level <= kMaxDealLevels) {
+  if (options_.deal_seed_cells && cell_level > gather_level && cell_level - gather_level <= kMaxDealLevels) {
     point_levels_ = point_level - cell_level;
     dealSeedCells(cell_level, sphere);
   } else if (cell_level != gather_level) {

@@ -61,6 +61,10 @@ struct GrowOptions {
   // points.
   double refine_c = 3.5;
   std::uint32_t refine_rounds = 4;
+  // Where the grow works in finer cells than those the seed gathers its sphere in (full detail
+  // on a dense scan), the seed deals the gathered points out to them; false gathers them again
+  // (slower, the same grow: the tests compare the two).
+  bool deal_seed_cells = true;
   // Fill SegmentSnapshot::members in the final result (the octree points of each segment).
   bool collect_members = false;
   // Only the points this keeps take part (a view's section: grows limited to what it shows);

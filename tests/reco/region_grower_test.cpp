@@ -176,9 +176,8 @@ TEST(RegionGrower, AGrowLimitedToTheSectionTakesOnlyItsPoints) {
 // shown at once, with their corner, before the sphere is gathered at full detail.
 TEST(RegionGrower, AFullDetailSeedShowsItsPlanesFromASampleFirst) {
   test::TempDirectory dir;
-  const std::vector<Patch> patches{{kUtm, {1.5, 0, 0}, {0, 1.5, 0}},
-                                   {kUtm, {0, 1.5, 0}, {0, 0, 1.5}},
-                                   {kUtm, {0, 0, 1.5}, {1.5, 0, 0}}};
+  const std::vector<Patch> patches{
+      {kUtm, {1.5, 0, 0}, {0, 1.5, 0}}, {kUtm, {0, 1.5, 0}, {0, 0, 1.5}}, {kUtm, {0, 0, 1.5}, {1.5, 0, 0}}};
   const auto octree = buildPatches(dir, patches, 300'000);
   lod::NodeCache cache(octree, 256 << 20);
   const double finest = octree->spacing(octree->header().depth);
@@ -208,6 +207,39 @@ TEST(RegionGrower, AFullDetailSeedShowsItsPlanesFromASampleFirst) {
   std::printf("first snapshot %llu points, the next %llu\n", static_cast<unsigned long long>(total(first)),
               static_cast<unsigned long long>(total(snapshots[1])));
   EXPECT_LT(4 * total(first), total(snapshots[1]));
+}
+
+// At full detail on a dense corner the grow works in cells finer than those the seed gathers its
+// sphere in, and the seed deals the gathered points out to them: the same grow, point for point,
+// as gathering them again.
+TEST(RegionGrower, ASeedDealtToFinerCellsGrowsAsOneGatheredAgain) {
+  test::TempDirectory dir;
+  const std::vector<Patch> patches{
+      {kUtm, {0.6, 0, 0}, {0, 0.6, 0}}, {kUtm, {0, 0.6, 0}, {0, 0, 0.6}}, {kUtm, {0, 0, 0.6}, {0.6, 0, 0}}};
+  const auto octree = buildPatches(dir, patches, 300'000);
+  const double finest = octree->spacing(octree->header().depth);
+  const GrowParameters parameters =
+      parametersForDensity(kUtm + Eigen::Vector3d(0.05, 0.05, 0.05), std::pow(finest, -3.0), 0.5);
+  GrowOptions dealt;
+  dealt.collect_members = true;
+  GrowOptions gathered = dealt;
+  gathered.deal_seed_cells = false;
+  lod::NodeCache cache(octree, 256 << 20);
+  const GrowSnapshot a = growRegions(cache, parameters, dealt);
+  const GrowSnapshot b = growRegions(cache, parameters, gathered);
+
+  ASSERT_TRUE(a.converged);
+  ASSERT_EQ(a.segments.size(), 3u);
+  ASSERT_EQ(b.segments.size(), a.segments.size());
+  EXPECT_EQ(a.cells_visited, b.cells_visited);
+  EXPECT_EQ(a.points_tested, b.points_tested);
+  for (std::size_t s = 0; s < a.segments.size(); ++s) {
+    EXPECT_EQ(a.segments[s].points, b.segments[s].points) << s;
+    EXPECT_EQ(a.segments[s].plane.normal, b.segments[s].plane.normal) << s;
+    EXPECT_EQ(a.segments[s].plane.offset, b.segments[s].plane.offset) << s;
+    EXPECT_TRUE(a.segments[s].members == b.segments[s].members) << s;
+    EXPECT_TRUE(holdsPatch(a.segments[s].points, 100'000)) << s;
+  }
 }
 
 //   x = 0      x = 0.1
