@@ -14,19 +14,11 @@ CellState& Grower::loaded(const CellKey& key) {
   if (!state.loaded) {
     state.loaded = true;
     const std::vector<lod::CellPoint> points = cell_points_.pointsInCell(key, key.level + point_levels_);
-    state.points.reserve(points.size());
-    state.refs.reserve(points.size());
-    state.assigned.reserve(points.size());
-    state.rejected_epoch.reserve(points.size());
-    state.rejected_by.reserve(points.size());
+    state.reserve(points.size());
     for (const lod::CellPoint& p : points) {
       const Eigen::Vector3d position(p.position[0], p.position[1], p.position[2]);
       if (options_.keep && !options_.keep(position)) continue;  // cut away by the view's section
-      state.points.push_back(position);
-      state.refs.push_back(p.ref);
-      state.assigned.push_back(membership_.flag(p.ref));
-      state.rejected_epoch.push_back(kNeverTested);
-      state.rejected_by.push_back(0);
+      state.add(position, p.ref, membership_.flag(p.ref));
     }
     if (!gathering_seed_) indexCell(state);  // the seed indexes its cells once r is known
   }

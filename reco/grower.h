@@ -102,7 +102,26 @@ struct AssignedCell {
   std::vector<Assigned> points;
 };
 
+// CellState::rejected_epoch of a point no segment has tested yet.
+inline constexpr std::uint32_t kNeverTested = ~std::uint32_t{0};
+
 struct CellState {
+  void reserve(std::size_t n) {
+    points.reserve(n);
+    refs.reserve(n);
+    assigned.reserve(n);
+    rejected_epoch.reserve(n);
+    rejected_by.reserve(n);
+  }
+  // Appends a point that no segment has tested yet.
+  void add(const Eigen::Vector3d& position, const lod::PointRef& ref, std::uint8_t segment_flag) {
+    points.push_back(position);
+    refs.push_back(ref);
+    assigned.push_back(segment_flag);
+    rejected_epoch.push_back(kNeverTested);
+    rejected_by.push_back(0);
+  }
+
   bool loaded = false;
   bool processed = false;
   std::vector<Eigen::Vector3d> points;
@@ -146,6 +165,7 @@ class Grower {
     std::vector<std::pair<CellKey, std::uint32_t>> origin;  // each point's cell and index there
   };
   std::uint32_t cellLevelFor(double width, std::uint32_t finest) const;
+  std::vector<CellKey> seedCells(std::uint32_t cell_level) const;
   void claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
   void dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere);
   double seedPlaneNoise(std::span<const Eigen::Vector3d> points, const std::vector<SeedPlane>& planes, double window,
@@ -226,7 +246,6 @@ class Grower {
   static constexpr std::size_t kMinNoiseResiduals = 30;
   // The noise for the reach where t_p is given is measured on about this many inliers.
   static constexpr std::size_t kReachNoiseResiduals = 20000;
-  static constexpr std::uint32_t kNeverTested = ~std::uint32_t{0};
   static constexpr std::size_t kMaxSegments = 32;  // segment masks are 32 bits wide
   // segmentsAround: a point on a segment's border has the segment's points to one side, their
   // mean 4 / (3 pi) = 0.42 r from it (a half disc); inside, a dozen points' mean strays about

@@ -163,31 +163,40 @@ std::uint32_t Grower::cellLevelFor(double width, std::uint32_t finest) const {
   return level;
 }
 
-// Claims the cells of `cell_level` that meet the seed sphere, each holding the points of levels
-// down to point_levels_ finer, and gathers the points inside the sphere with where they lie. Every
-// cell of the box around the sphere, also those without a node of their own: where a branch
-// ends in a leaf above the level, the cell's points come from its ancestors. `cell_level`
-// becomes the grow's base and working level (the level its cells are claimed at from then on).
-void Grower::claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
+// The cells of `cell_level` that meet the seed sphere, in z, y, x order: every cell of the box
+// around the sphere, also those without a node of their own.
+std::vector<CellKey> Grower::seedCells(std::uint32_t cell_level) const {
   const double rs = parameters_.seed_radius_m;
   const auto seed_array = array(parameters_.seed);
-  base_level_ = working_level_ = cell_level;
   const CellKey low = octree_.cube().cellAt({seed_array[0] - rs, seed_array[1] - rs, seed_array[2] - rs}, cell_level);
   const CellKey high = octree_.cube().cellAt({seed_array[0] + rs, seed_array[1] + rs, seed_array[2] + rs}, cell_level);
+  std::vector<CellKey> cells;
   for (std::uint32_t z = low.z; z <= high.z; ++z) {
     for (std::uint32_t y = low.y; y <= high.y; ++y) {
       for (std::uint32_t x = low.x; x <= high.x; ++x) {
         const CellKey key{cell_level, x, y, z};
-        if (octree_.cube().squaredDistance(key, seed_array) > rs * rs) continue;
-        sphere.cells.push_back(key);
-        claims_.claim(key);
-        const CellState& state = loaded(key);
-        for (std::uint32_t i = 0; i < state.points.size(); ++i) {
-          if ((state.points[i] - parameters_.seed).squaredNorm() <= rs * rs) {
-            sphere.points.push_back(state.points[i]);
-            sphere.origin.emplace_back(key, i);
-          }
-        }
+        if (octree_.cube().squaredDistance(key, seed_array) <= rs * rs) cells.push_back(key);
+      }
+    }
+  }
+  return cells;
+}
+
+// Claims the seed cells of `cell_level` (seedCells), each holding the points of levels down to
+// point_levels_ finer, and gathers the points inside the sphere with where they lie. Where a
+// branch ends in a leaf above the level, a cell's points come from its ancestors. `cell_level`
+// becomes the grow's base and working level (the level its cells are claimed at from then on).
+void Grower::claimSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
+  const double rs = parameters_.seed_radius_m;
+  base_level_ = working_level_ = cell_level;
+  for (const CellKey& key : seedCells(cell_level)) {
+    sphere.cells.push_back(key);
+    claims_.claim(key);
+    const CellState& state = loaded(key);
+    for (std::uint32_t i = 0; i < state.points.size(); ++i) {
+      if ((state.points[i] - parameters_.seed).squaredNorm() <= rs * rs) {
+        sphere.points.push_back(state.points[i]);
+        sphere.origin.emplace_back(key, i);
       }
     }
   }
@@ -214,7 +223,7 @@ void Grower::dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
     // that cell's order: 0 its own node, L - level an ancestor, level a descendant.
     std::vector<std::uint32_t> local(n);
     std::vector<std::uint32_t> rank(n);
-    std::array<std::uint32_t, 2 * lod::kMaxLevel + 2> rank_count{};
+    std::array<std::uint32_t, lod::kMaxLevel + 1> rank_count{};  // ranks 0..kMaxLevel
     for (std::size_t i = 0; i < n; ++i) {
       const CellKey& node = octree_.nodes()[gathered.refs[i].node].key;
       const CellKey cell = node.level >= cell_level
@@ -246,23 +255,12 @@ void Grower::dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
                           (gathered_key.z << steps) + lz};
         if (cube.squaredDistance(key, array(parameters_.seed)) > rs * rs) continue;  // not claimed
         dealt.emplace_back(key, CellState{});
-        CellState& state = dealt.back().second;
-        state.loaded = true;
-        const std::uint32_t count = local_count[local[i]];
-        state.points.reserve(count);
-        state.refs.reserve(count);
-        state.assigned.reserve(count);
-        state.rejected_epoch.reserve(count);
-        state.rejected_by.reserve(count);
+        dealt.back().second.reserve(local_count[local[i]]);
         cell_number = static_cast<std::uint32_t>(dealt.size());
       }
       CellState& state = dealt[cell_number - 1].second;
       places[i] = {cell_number - 1, static_cast<std::uint32_t>(state.points.size())};
-      state.points.push_back(gathered.points[i]);
-      state.refs.push_back(gathered.refs[i]);
-      state.assigned.push_back(gathered.assigned[i]);
-      state.rejected_epoch.push_back(gathered.rejected_epoch[i]);
-      state.rejected_by.push_back(gathered.rejected_by[i]);
+      state.add(gathered.points[i], gathered.refs[i], gathered.assigned[i]);  // nothing is tested yet
     }
   }
   for (auto& [key, index] : sphere.origin) {
@@ -270,29 +268,18 @@ void Grower::dealSeedCells(std::uint32_t cell_level, SeedSphere& sphere) {
     key = dealt[cell_number].first;
     index = dealt_index;
   }
-  // Claimed and inserted as claimSeedCells does: every cell of the box that meets the sphere, in
-  // z, y, x order, those without a point too (cells_'s order is the final fit's).
+  // Claimed and inserted as claimSeedCells does (seedCells: empty cells too, in its order;
+  // cells_'s order is the final fit's).
   std::unordered_map<CellKey, std::uint32_t, lod::CellKeyHash> dealt_number;
   for (std::uint32_t d = 0; d < dealt.size(); ++d) dealt_number.emplace(dealt[d].first, d);
   forgetCells();
-  sphere.cells.clear();
-  const auto seed_array = array(parameters_.seed);
-  const CellKey low = cube.cellAt({seed_array[0] - rs, seed_array[1] - rs, seed_array[2] - rs}, cell_level);
-  const CellKey high = cube.cellAt({seed_array[0] + rs, seed_array[1] + rs, seed_array[2] + rs}, cell_level);
-  for (std::uint32_t z = low.z; z <= high.z; ++z) {
-    for (std::uint32_t y = low.y; y <= high.y; ++y) {
-      for (std::uint32_t x = low.x; x <= high.x; ++x) {
-        const CellKey key{cell_level, x, y, z};
-        if (cube.squaredDistance(key, seed_array) > rs * rs) continue;
-        claims_.claim(key);
-        CellState& state = cells_[key];
-        if (const auto it = dealt_number.find(key); it != dealt_number.end())
-          state = std::move(dealt[it->second].second);
-        state.loaded = true;
-        indexCell(state);
-        sphere.cells.push_back(key);
-      }
-    }
+  sphere.cells = seedCells(cell_level);
+  for (const CellKey& key : sphere.cells) {
+    claims_.claim(key);
+    CellState& state = cells_[key];
+    if (const auto it = dealt_number.find(key); it != dealt_number.end()) state = std::move(dealt[it->second].second);
+    state.loaded = true;
+    indexCell(state);
   }
   base_level_ = working_level_ = cell_level;
 }
