@@ -95,7 +95,7 @@ LazSymbolModel::LazSymbolModel(std::uint32_t symbols) : symbols_(symbols), last_
     table_shift_ = kSymbolLengthShift - table_bits;
     table_.resize(table_size_ + 2);
   }
-  distribution_.resize(symbols_);
+  distribution_.resize(symbols_ + 1);  // and a padding entry, read and not used after the last
   counts_.resize(symbols_);
   reset();
 }
@@ -140,6 +140,17 @@ void LazSymbolModel::update() {
   }
   update_cycle_ = std::min((5 * update_cycle_) >> 2, (symbols_ + 6) << 3);
   until_update_ = update_cycle_;
+}
+
+LazModelSet::LazModelSet(std::vector<std::uint32_t> symbols) : slots_(symbols.size()), symbols_(std::move(symbols)) {}
+
+void LazModelSet::prepare(Slot& slot, std::size_t i) {
+  if (slot.model) {
+    slot.model->reset();
+  } else {
+    slot.model.emplace(symbols_[i]);
+  }
+  slot.generation = generation_;
 }
 
 // ---- The decoder -----------------------------------------------------------------------------

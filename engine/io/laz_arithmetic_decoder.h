@@ -21,8 +21,11 @@
 // bytes run out, and LazByteInput then throws plumb::Error with the file and the byte offset.
 
 #include <algorithm>
+#include <bit>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -50,6 +53,15 @@ class LazByteInput {
 
   // Exactly `out.size()` bytes (a chunk's first point, stored raw).
   void read(std::span<std::byte> out);
+
+  // Bytes buffered beyond the next one's position; peekFour() needs 4.
+  std::size_t buffered() const { return filled_ - at_; }
+  // The next 4 bytes as a big-endian number, not consumed; skip() consumes them.
+  std::uint32_t peekFour() const {
+    const std::uint8_t* p = buffer_.data() + at_;
+    return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+  }
+  void skip(std::size_t bytes) { at_ += bytes; }
 
   // File offset of the byte next() returns next.
   std::uint64_t offset() const { return buffer_start_ + at_; }
@@ -102,6 +114,39 @@ class LazSymbolModel {
   std::vector<std::uint32_t> table_;  // table_size_ + 2 entries: first symbol per slice of the range
 };
 
+// Symbol models made and reset when first used in a chunk, not when the chunk begins: a coder
+// holds many more models than a chunk uses (an integer field of 32 bits has a corrector model of
+// up to 256 symbols for each of its 32 corrector widths), and resetting each is a pass over its
+// symbols. The decoded values are the same: a model's first use sees the state reset() gives.
+class LazModelSet {
+ public:
+  // One model of symbols[i] values per slot.
+  explicit LazModelSet(std::vector<std::uint32_t> symbols);
+  LazModelSet(std::size_t count, std::uint32_t symbols) : LazModelSet(std::vector<std::uint32_t>(count, symbols)) {}
+
+  // Every model back to its reset state before its next use (as at the start of a chunk).
+  void reset() { ++generation_; }
+
+  LazSymbolModel& operator[](std::size_t i) {
+    assert(i < slots_.size() && "a model beyond the set's");
+    Slot& slot = slots_[i];
+    if (slot.generation != generation_) [[unlikely]]
+      prepare(slot, i);
+    return *slot.model;
+  }
+
+ private:
+  struct Slot {
+    std::optional<LazSymbolModel> model;
+    std::uint64_t generation = 0;  // of the last reset; 0: not made yet
+  };
+  void prepare(Slot& slot, std::size_t i);
+
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> symbols_;
+  std::uint64_t generation_ = 1;
+};
+
 // The range decoder over a LazByteInput. start() before the first decode, at the beginning of
 // each chunk's arithmetic-coded bytes.
 class LazArithmeticDecoder {
@@ -141,13 +186,24 @@ class LazArithmeticDecoder {
 // state) would otherwise force the compiler to reload it after each.
 
 inline void LazArithmeticDecoder::renormalise() {
-  std::uint32_t value = value_, length = length_;
+  const std::uint32_t length = length_;
+  if (length != 0 && input_.buffered() >= 4) [[likely]] {
+    const unsigned bits = static_cast<unsigned>(std::countl_zero(length)) & ~7u;  // 0 at >= 2^24
+    value_ =
+        static_cast<std::uint32_t>((std::uint64_t{value_} << bits) | (std::uint64_t{input_.peekFour()} >> (32 - bits)));
+    length_ = static_cast<std::uint32_t>(std::uint64_t{length} << bits);
+    input_.skip(bits >> 3);
+    return;
+  }
+  if (length >= kMinLength) return;
+  std::uint32_t value = value_;
+  std::uint32_t shifted = length;
   do {
     value = (value << 8) | input_.next();
-    length <<= 8;
-  } while (length < kMinLength);
+    shifted <<= 8;
+  } while (shifted < kMinLength);
   value_ = value;
-  length_ = length;
+  length_ = shifted;
 }
 
 inline std::uint32_t LazArithmeticDecoder::decodeBit(LazBitModel& model) {
@@ -161,7 +217,7 @@ inline std::uint32_t LazArithmeticDecoder::decodeBit(LazBitModel& model) {
     value_ -= bound;
     length_ -= bound;
   }
-  if (length_ < kMinLength) renormalise();
+  renormalise();
   if (--model.until_update_ == 0) model.update();
   return bit;
 }
@@ -189,7 +245,8 @@ inline std::uint32_t LazArithmeticDecoder::decodeSymbol(LazSymbolModel& model) {
       }
     }
     low = distribution[symbol] * length;
-    if (symbol != model.last_symbol_) high = distribution[symbol + 1] * length;
+    const std::uint32_t next = distribution[symbol + 1] * length;  // the padding after the last
+    high = symbol != model.last_symbol_ ? next : high;
   } else {
     // Few symbols: bisect on the products directly.
     std::uint32_t above = model.symbols_;
@@ -208,7 +265,7 @@ inline std::uint32_t LazArithmeticDecoder::decodeSymbol(LazSymbolModel& model) {
   }
   value_ = value - low;
   length_ = high - low;
-  if (length_ < kMinLength) renormalise();
+  renormalise();
   ++model.counts_[symbol];
   if (--model.until_update_ == 0) model.update();
   return symbol;
@@ -218,7 +275,7 @@ inline std::uint32_t LazArithmeticDecoder::readUpTo19Bits(unsigned bits) {
   length_ >>= bits;
   const std::uint32_t symbol = value_ / length_;
   value_ -= length_ * symbol;
-  if (length_ < kMinLength) renormalise();
+  renormalise();
   return symbol;
 }
 

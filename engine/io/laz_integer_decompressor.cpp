@@ -6,34 +6,41 @@
 
 namespace plumb::io {
 
+namespace {
+
+unsigned correctorBits(unsigned bits) {
+  return bits < 32 ? bits : 32;
+}
+
+// The corrector models' sizes: 2^k symbols for k = 1 .. bits_high, 2^bits_high beyond.
+std::vector<std::uint32_t> correctorSymbols(unsigned bits, unsigned bits_high) {
+  std::vector<std::uint32_t> symbols;
+  for (unsigned k = 1; k <= correctorBits(bits); ++k) symbols.push_back(1u << std::min(k, bits_high));
+  return symbols;
+}
+
+}  // namespace
+
 LazIntegerDecompressor::LazIntegerDecompressor(unsigned bits, unsigned contexts, unsigned bits_high)
-    : bits_high_(bits_high) {
+    : bits_high_(bits_high),
+      corrector_bits_(correctorBits(bits)),
+      corrector_range_(bits < 32 ? 1u << bits : 0u),
+      corrector_min_(bits < 32 ? -static_cast<std::int32_t>(1u << (bits - 1))
+                               : std::numeric_limits<std::int32_t>::min()),
+      k_models_(contexts, correctorBits(bits) + 1),
+      corrector_models_(correctorSymbols(bits, bits_high)) {
   assert(bits >= 1 && bits <= 32 && "a LAZ integer field has 1 to 32 bits");
   assert(contexts >= 1 && bits_high >= 1 && bits_high <= 11 && "LASzip uses 8 high bits and at least one context");
-  if (bits < 32) {
-    corrector_bits_ = bits;
-    corrector_range_ = 1u << bits;
-    corrector_min_ = -static_cast<std::int32_t>(corrector_range_ / 2);
-  } else {
-    corrector_bits_ = 32;
-    corrector_range_ = 0;
-    corrector_min_ = std::numeric_limits<std::int32_t>::min();
-  }
-  k_models_.reserve(contexts);
-  for (unsigned i = 0; i < contexts; ++i) k_models_.emplace_back(corrector_bits_ + 1);
-  corrector_models_.reserve(corrector_bits_);
-  for (unsigned k = 1; k <= corrector_bits_; ++k) corrector_models_.emplace_back(1u << std::min(k, bits_high_));
 }
 
 void LazIntegerDecompressor::reset() {
-  for (LazSymbolModel& model : k_models_) model.reset();
+  k_models_.reset();
   k0_model_.reset();
-  for (LazSymbolModel& model : corrector_models_) model.reset();
+  corrector_models_.reset();
   k_ = 0;
 }
 
 std::uint32_t LazIntegerDecompressor::readCorrector(LazArithmeticDecoder& decoder, unsigned context) {
-  assert(context < k_models_.size() && "context beyond the decompressor's contexts");
   k_ = decoder.decodeSymbol(k_models_[context]);
   if (k_ == 0) return decoder.decodeBit(k0_model_);  // c is 0 or 1
   if (k_ >= 32) return static_cast<std::uint32_t>(corrector_min_);

@@ -14,7 +14,6 @@
 // k of the last value is exposed: the item coders choose the next field's context from it.
 
 #include <cstdint>
-#include <vector>
 
 #include "engine/io/laz_arithmetic_decoder.h"
 
@@ -39,12 +38,12 @@ class LazIntegerDecompressor {
   std::uint32_t readCorrector(LazArithmeticDecoder& decoder, unsigned context);
 
   unsigned bits_high_;
-  unsigned corrector_bits_;               // the largest k
-  std::uint32_t corrector_range_;         // 2^bits, or 0 for 32 bits (no folding)
-  std::int32_t corrector_min_;            // c for k = 32
-  std::vector<LazSymbolModel> k_models_;  // per context
+  unsigned corrector_bits_;        // the largest k
+  std::uint32_t corrector_range_;  // 2^bits, or 0 for 32 bits (no folding)
+  std::int32_t corrector_min_;     // c for k = 32
+  LazModelSet k_models_;           // per context
   LazBitModel k0_model_;
-  std::vector<LazSymbolModel> corrector_models_;  // [k - 1] for k = 1 .. corrector_bits_
+  LazModelSet corrector_models_;  // [k - 1] for k = 1 .. corrector_bits_
   unsigned k_ = 0;
 };
 

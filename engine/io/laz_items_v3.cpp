@@ -83,27 +83,6 @@ std::int32_t wrappingMultiply(std::int32_t a, std::int32_t b) {
   return static_cast<std::int32_t>(static_cast<std::uint32_t>(a) * static_cast<std::uint32_t>(b));
 }
 
-// Symbol models made when first used in a chunk (most files use a few of the many contexts).
-class LazyModels {
- public:
-  LazyModels(std::size_t count, std::uint32_t symbols) : models_(count), symbols_(symbols) {}
-
-  LazSymbolModel& operator[](std::size_t i) {
-    std::unique_ptr<LazSymbolModel>& model = models_[i];
-    if (!model) model = std::make_unique<LazSymbolModel>(symbols_);
-    return *model;
-  }
-  void reset() {
-    for (const std::unique_ptr<LazSymbolModel>& model : models_) {
-      if (model) model->reset();
-    }
-  }
-
- private:
-  std::vector<std::unique_ptr<LazSymbolModel>> models_;
-  std::uint32_t symbols_;
-};
-
 // A LAS 1.4 point's fields as POINT14 predicts them.
 struct Point14 {
   std::int32_t x = 0, y = 0, z = 0;
@@ -144,8 +123,8 @@ struct Point14 {
     packLittleEndian(out + 8, z);
     packLittleEndian(out + 12, intensity);
     out[14] = static_cast<std::byte>(return_number | (number_of_returns << 4));
-    out[15] = static_cast<std::byte>(classification_flags | (scanner_channel << 4) | (scan_direction << 6) |
-                                     (edge << 7));
+    out[15] =
+        static_cast<std::byte>(classification_flags | (scanner_channel << 4) | (scan_direction << 6) | (edge << 7));
     out[16] = static_cast<std::byte>(classification);
     out[17] = static_cast<std::byte>(user_data);
     packLittleEndian(out + 18, scan_angle);
@@ -163,9 +142,9 @@ class Point14V3 final : public LazLayeredItemDecoder {
   std::size_t layerCount() const override { return kLayers; }
   std::string layerName(std::size_t layer) const override {
     static constexpr std::array<const char*, kLayers> kNames{
-        "POINT14 x/y and returns", "POINT14 z",         "POINT14 classification",
-        "POINT14 flags",           "POINT14 intensity", "POINT14 scan angle",
-        "POINT14 user data",       "POINT14 point source", "POINT14 GPS time"};
+        "POINT14 x/y and returns", "POINT14 z",          "POINT14 classification", "POINT14 flags",
+        "POINT14 intensity",       "POINT14 scan angle", "POINT14 user data",      "POINT14 point source",
+        "POINT14 GPS time"};
     return kNames[layer];
   }
 
@@ -302,7 +281,7 @@ class Point14V3 final : public LazLayeredItemDecoder {
 
   static constexpr std::int32_t kMaxMultiplier = 500;
   static constexpr std::int32_t kMinMultiplier = -10;
-  static constexpr std::uint32_t kJump = kMaxMultiplier - kMinMultiplier + 1;  // 511; above: switches
+  static constexpr std::uint32_t kJump = kMaxMultiplier - kMinMultiplier + 1;       // 511; above: switches
   static constexpr std::uint32_t kTimeCodes = kMaxMultiplier - kMinMultiplier + 5;  // 515
 
   // The models and last values of one scanner channel.
@@ -314,10 +293,10 @@ class Point14V3 final : public LazLayeredItemDecoder {
 
     std::vector<LazSymbolModel> changed = std::vector<LazSymbolModel>(8, LazSymbolModel(128));
     LazSymbolModel scanner_channel{3};
-    LazyModels number_of_returns{16, 16}, return_number{16, 16};
+    LazModelSet number_of_returns{16, 16}, return_number{16, 16};
     LazSymbolModel return_number_same_time{13};
     LazIntegerDecompressor dx{32, 2}, dy{32, 22}, z{32, 20};
-    LazyModels classification{64, 256}, flags{64, 64}, user_data{64, 256};
+    LazModelSet classification{64, 256}, flags{64, 64}, user_data{64, 256};
     LazIntegerDecompressor intensity{16, 4}, scan_angle{16, 2}, source_id{16, 1};
 
     unsigned sequence = 0, newest = 0;
@@ -446,7 +425,7 @@ class Point14V3 final : public LazLayeredItemDecoder {
   bool version4_;
   std::array<LazLayer*, kLayers> layers_{};
   std::array<std::unique_ptr<Channel>, kChannels> channels_;  // kept across chunks, reset when used
-  std::array<Channel*, kChannels> used_{};                     // those started in this chunk
+  std::array<Channel*, kChannels> used_{};                    // those started in this chunk
   unsigned current_ = 0;
   std::uint32_t changed_ = 0;
 };
@@ -510,9 +489,15 @@ struct RgbModels {
   }
 };
 
-unsigned lowByte(unsigned v) { return v & 0xFFu; }
-unsigned highByte(unsigned v) { return v >> 8; }
-unsigned clampToByte(int v) { return static_cast<unsigned>(std::clamp(v, 0, 255)); }
+unsigned lowByte(unsigned v) {
+  return v & 0xFFu;
+}
+unsigned highByte(unsigned v) {
+  return v >> 8;
+}
+unsigned clampToByte(int v) {
+  return static_cast<unsigned>(std::clamp(v, 0, 255));
+}
 
 // Decodes a colour predicted by `last` into `colour`.
 void decodeRgb(LazArithmeticDecoder& decoder, RgbModels& models, const std::array<std::uint16_t, 4>& last,
