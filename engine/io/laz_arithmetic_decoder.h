@@ -12,7 +12,8 @@
 //     to 64 bits (the update cycle grows by 5/4), counts halved beyond 2^13;
 //   - adaptive symbols of 2 to 2048 values (LazSymbolModel): a cumulative distribution in 15 bits,
 //     recomputed on the same growing cycle (at most 8 (n + 6) symbols), counts halved beyond 2^15;
-//     above 16 symbols a look-up table narrows the search before a bisection;
+//     above 8 symbols a look-up table (finer than the reference's) narrows the search before a
+//     bisection;
 //   - raw bits, 1 to 32, of uniform probability.
 // Every operation is bit-exact with the reference: a decoded stream only matches when each
 // multiply, shift and truncation is the same.
