@@ -45,22 +45,17 @@ std::uint32_t LazIntegerDecompressor::readCorrector(LazArithmeticDecoder& decode
   if (k_ == 0) return decoder.decodeBit(k0_model_);  // c is 0 or 1
   if (k_ >= 32) return static_cast<std::uint32_t>(corrector_min_);
 
-  std::uint32_t c = 0;
-  if (k_ <= bits_high_) {
-    c = decoder.decodeSymbol(corrector_models_[k_ - 1]);
-  } else {
+  // The top bits_high_ bits (all of them up to k = bits_high_) with the model of k, the rest raw.
+  std::uint32_t c = decoder.decodeSymbol(corrector_models_[k_ - 1]);
+  if (k_ > bits_high_) {
     const unsigned low_bits = k_ - bits_high_;
-    const std::uint32_t high = decoder.decodeSymbol(corrector_models_[k_ - 1]);
-    c = (high << low_bits) | decoder.readBits(low_bits);
+    c = (c << low_bits) | decoder.readBits(low_bits);
   }
   // c is the offset in the 2^k values of the corrector's two intervals: the upper half stands
   // for [2^(k-1) + 1, 2^k], the lower half for [-(2^k - 1), -2^(k-1)]. The comparison is signed,
   // as the reference's, so that corrupt raw bits fold the same way (32-bit wrap-around).
-  if (static_cast<std::int32_t>(c) >= static_cast<std::int32_t>(1u << (k_ - 1))) {
-    c += 1;
-  } else {
-    c -= (1u << k_) - 1u;
-  }
+  const bool upper = static_cast<std::int32_t>(c) >= static_cast<std::int32_t>(1u << (k_ - 1));
+  c = upper ? c + 1 : c - ((1u << k_) - 1u);
   return c;
 }
 
