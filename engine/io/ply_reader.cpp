@@ -66,7 +66,8 @@ bool isFloat(Scalar type) {
   return type == Scalar::kFloat32 || type == Scalar::kFloat64;
 }
 
-double decode(const std::byte* p, Scalar type, bool swap) {
+// Inlined into the row loops: a call per property was a fifth of reading a binary file.
+[[gnu::always_inline]] inline double decode(const std::byte* p, Scalar type, bool swap) {
   switch (type) {
     case Scalar::kInt8:
       return loadBytes<std::int8_t>(p, false);
@@ -134,12 +135,13 @@ int roleNamed(std::string_view name) {
   return -1;
 }
 
-std::uint16_t toColour(double value, Scalar type) {
+[[gnu::always_inline]] inline std::uint16_t toColour(double value, Scalar type) {
   if (!std::isfinite(value)) return 0;
   // An ascii file may write any number for a uchar property: clamp before narrowing.
-  if (type == Scalar::kUInt8) return widenColour(static_cast<std::uint8_t>(std::clamp(std::round(value), 0.0, 255.0)));
+  if (type == Scalar::kUInt8)
+    return widenColour(static_cast<std::uint8_t>(std::clamp(roundedToWhole(value), 0.0, 255.0)));
   const double scaled = isFloat(type) ? value * 65535.0 : value;
-  return static_cast<std::uint16_t>(std::clamp(std::round(scaled), 0.0, 65535.0));
+  return static_cast<std::uint16_t>(std::clamp(roundedToWhole(scaled), 0.0, 65535.0));
 }
 
 std::vector<std::string_view> splitWords(std::string_view line) {
@@ -307,8 +309,8 @@ class PlyReader final : public PointReader {
     }
   }
 
-  void emit(PointBatch& batch, const std::array<double, kRoleCount>& value,
-            const std::array<Scalar, kRoleCount>& type) {
+  [[gnu::always_inline]] void emit(PointBatch& batch, const std::array<double, kRoleCount>& value,
+                                   const std::array<Scalar, kRoleCount>& type) {
     PointRecord point{value[kX], value[kY], value[kZ], {0, 0, 0}, 0};
     if (info_.attributes.colour) {
       point.rgb = {toColour(value[kRed], type[kRed]), toColour(value[kGreen], type[kGreen]),

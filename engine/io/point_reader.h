@@ -136,10 +136,20 @@ constexpr std::uint16_t widenColour(std::uint8_t value) {
   return static_cast<std::uint16_t>(value * 257);
 }
 
+// std::round(value) for a finite value, without the library call where it is a whole number
+// already (every integer property of a binary file).
+inline double roundedToWhole(double value) {
+  if (std::abs(value) < 0x1p52) {
+    const double whole = static_cast<double>(static_cast<std::int64_t>(value));
+    if (whole == value) return value;
+  }
+  return std::round(value);
+}
+
 // An intensity value of a file, taken as 16-bit: rounded and clamped to 0..65535; 0 when NaN.
 inline std::uint16_t intensityFrom(double value) {
   if (!std::isfinite(value)) return 0;
-  return static_cast<std::uint16_t>(std::clamp(std::round(value), 0.0, 65535.0));
+  return static_cast<std::uint16_t>(std::clamp(roundedToWhole(value), 0.0, 65535.0));
 }
 
 }  // namespace plumb::io
