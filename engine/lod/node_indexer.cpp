@@ -51,6 +51,25 @@ std::uint64_t thinningHash(const Position& p) {
   return h;
 }
 
+GridPlace placeOf(const Cube& cube, const Position& p) {
+  const double inverse = 1.0 / cube.size;  // Cube::cellAt's scale is 2^L times this, exactly
+  GridPlace place{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double steps = std::floor((p[a] - cube.origin[a]) * inverse * 0x1p32);
+    place[a] = static_cast<std::uint32_t>(std::clamp(steps, 0.0, 0x1p32 - 1.0));
+  }
+  return place;
+}
+
+namespace {
+
+// The thinning's tie-break between points of equal hash_high: a hash of their places.
+std::uint64_t placeHash(const GridPlace& place) {
+  return mix((std::uint64_t{place[0]} << 32 | place[1]) ^ mix(std::uint64_t{place[2]} + 0x9E3779B97F4A7C15ULL));
+}
+
+}  // namespace
+
 NodeIndexer::NodeIndexer(const Cube& cube, std::uint32_t leaf_max_points)
     : cube_(cube), leaf_max_points_(leaf_max_points) {}
 
@@ -80,26 +99,27 @@ void sortByCell(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& sc
 }  // namespace
 
 std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoint> points,
-                                         std::span<const Position> coarser) {
-  const Box3 box = cube_.cellBox(key);
-  const double inverse_step = kSamplingGrid / cube_.cellSize(key.level);
-  auto locate = [&](const Position& p) {
+                                         std::span<const GridPlace> coarser) {
+  // A grid cell of the node is a cell of 7 levels further down (128 = 2^7).
+  const std::uint32_t grid_level = key.level + 7;
+  const std::array<std::uint64_t, 3> first{std::uint64_t{key.x} << 7, std::uint64_t{key.y} << 7,
+                                           std::uint64_t{key.z} << 7};
+  auto locate = [&](const GridPlace& p) {
     std::uint64_t cell = 0;
     for (std::size_t a = 0; a < 3; ++a) {
-      const double local = (p[a] - box.min[a]) * inverse_step;
-      const double index = std::clamp(std::floor(local), 0.0, double{kSamplingGrid - 1});
-      cell = cell * kSamplingGrid + static_cast<std::uint64_t>(index);
+      const std::uint64_t index = std::min<std::uint64_t>(cellOf(p[a], grid_level) - first[a], kSamplingGrid - 1);
+      cell = cell * kSamplingGrid + index;
     }
     return cell;
   };
+  static_assert(kSamplingGrid == 128, "the grid cells are the cells 7 levels below the node's");
 
   // 1. The occupied grid cells (slots), in cell order, with their coarser points and this node's
   //    own: both sorted by cell, then merged. order_ lists the node's points cell by cell.
   cell_keys_.resize(points.size());
   score_.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const Position p{points[i].x, points[i].y, points[i].z};
-    cell_keys_[i] = locate(p) << 32 | i;
+    cell_keys_[i] = locate(points[i].place) << 32 | i;
     score_[i] = points[i].hash_high;
   }
   sortByCell(cell_keys_, sort_scratch_);
@@ -177,8 +197,8 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     // are broken by input position, so the choice is deterministic.
     std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
       if (score_[a] != score_[b]) return score_[a] < score_[b];
-      const std::uint64_t hash_a = thinningHash({points[a].x, points[a].y, points[a].z});
-      const std::uint64_t hash_b = thinningHash({points[b].x, points[b].y, points[b].z});
+      const std::uint64_t hash_a = placeHash(points[a].place);
+      const std::uint64_t hash_b = placeHash(points[b].place);
       return hash_a != hash_b ? hash_a < hash_b : a < b;
     });
     for (auto it = begin; it != keep; ++it) selected_[*it] = 1;
@@ -198,22 +218,12 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
   return front;
 }
 
-int NodeIndexer::octantOf(const CellKey& key, const Position& p) const {
-  // The same rule as Cube::cellAt at the child level, so a point's child is the cell it lies in.
-  const CellKey first = key.child(0);
-  const CellKey cell = cube_.cellAt(p, first.level);
-  return static_cast<int>((cell.x - first.x) | ((cell.y - first.y) << 1) | ((cell.z - first.z) << 2));
-}
-
-std::array<std::vector<Position>, 8> NodeIndexer::coarserForChildren(const CellKey& key,
-                                                                     std::span<const Position> coarser,
-                                                                     std::span<const BuildPoint> selected) const {
-  std::array<std::vector<Position>, 8> result;
-  for (const Position& p : coarser) result[static_cast<std::size_t>(octantOf(key, p))].push_back(p);
-  for (const BuildPoint& b : selected) {
-    const Position p{b.x, b.y, b.z};
-    result[static_cast<std::size_t>(octantOf(key, p))].push_back(p);
-  }
+std::array<std::vector<GridPlace>, 8> NodeIndexer::coarserForChildren(const CellKey& key,
+                                                                      std::span<const GridPlace> coarser,
+                                                                      std::span<const BuildPoint> selected) const {
+  std::array<std::vector<GridPlace>, 8> result;
+  for (const GridPlace& p : coarser) result[static_cast<std::size_t>(octantOf(key, p))].push_back(p);
+  for (const BuildPoint& b : selected) result[static_cast<std::size_t>(octantOf(key, b.place))].push_back(b.place);
   return result;
 }
 
@@ -221,7 +231,7 @@ std::array<std::size_t, 9> NodeIndexer::splitByOctant(const CellKey& key, std::s
   octants_.resize(points.size());
   std::array<std::size_t, 8> counts{};
   for (std::size_t i = 0; i < points.size(); ++i) {
-    octants_[i] = static_cast<std::uint8_t>(octantOf(key, {points[i].x, points[i].y, points[i].z}));
+    octants_[i] = static_cast<std::uint8_t>(octantOf(key, points[i].place));
     ++counts[octants_[i]];
   }
   std::array<std::size_t, 9> bounds{};
@@ -246,7 +256,7 @@ std::array<std::size_t, 9> NodeIndexer::splitByOctant(const CellKey& key, std::s
 
 std::pair<std::size_t, std::uint8_t> NodeIndexer::keepSubsampleAndIndexChildren(const CellKey& key,
                                                                                 std::span<BuildPoint> points,
-                                                                                std::span<const Position> coarser,
+                                                                                std::span<const GridPlace> coarser,
                                                                                 const ChildIndexer& index_child) {
   const std::size_t kept = selectSubsample(key, points, coarser);
   const std::span<BuildPoint> rest = points.subspan(kept);
@@ -261,7 +271,7 @@ std::pair<std::size_t, std::uint8_t> NodeIndexer::keepSubsampleAndIndexChildren(
   return {kept, mask};
 }
 
-bool NodeIndexer::indexSubtree(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
+bool NodeIndexer::indexSubtree(const CellKey& key, std::span<BuildPoint> points, std::span<const GridPlace> coarser,
                                const NodeSink& sink) {
   if (points.empty()) return false;
   if (isLeaf(key, points.size())) {
@@ -269,7 +279,7 @@ bool NodeIndexer::indexSubtree(const CellKey& key, std::span<BuildPoint> points,
     return true;
   }
   const auto [kept, mask] = keepSubsampleAndIndexChildren(
-      key, points, coarser, [&](const CellKey& child, std::span<BuildPoint> range, std::span<const Position> above) {
+      key, points, coarser, [&](const CellKey& child, std::span<BuildPoint> range, std::span<const GridPlace> above) {
         return indexSubtree(child, range, above, sink);
       });
   sink(key, points.first(kept), mask);
@@ -284,7 +294,7 @@ StopSet::StopSet(const std::vector<CellKey>& roots) : stops(roots.begin(), roots
   }
 }
 
-bool NodeIndexer::indexAbove(const CellKey& key, std::span<BuildPoint> points, std::span<const Position> coarser,
+bool NodeIndexer::indexAbove(const CellKey& key, std::span<BuildPoint> points, std::span<const GridPlace> coarser,
                              const StopSet& stops, const StopSink& stop_sink, const NodeSink& sink) {
   if (stops.stops.contains(key)) return stop_sink(key, points);
   if (!stops.ancestors.contains(key)) {
@@ -292,7 +302,7 @@ bool NodeIndexer::indexAbove(const CellKey& key, std::span<BuildPoint> points, s
     return false;
   }
   const auto [kept, mask] = keepSubsampleAndIndexChildren(
-      key, points, coarser, [&](const CellKey& child, std::span<BuildPoint> range, std::span<const Position> above) {
+      key, points, coarser, [&](const CellKey& child, std::span<BuildPoint> range, std::span<const GridPlace> above) {
         return indexAbove(child, range, above, stops, stop_sink, sink);
       });
   if (kept == 0 && mask == 0) return false;  // everything below was taken further up

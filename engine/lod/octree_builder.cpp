@@ -37,10 +37,10 @@ constexpr std::size_t kReadBatchPoints = std::size_t{1} << 18;
 // The counting grid: 128^3 cells, level 7.
 constexpr std::uint32_t kCountLevel = 7;
 constexpr std::size_t kCountCells = std::size_t{1} << (3 * kCountLevel);
-// Bytes a point costs while its chunk is indexed: the point (40), the indexer's per-point
+// Bytes a point costs while its chunk is indexed: the point (28), the indexer's per-point
 // scratch (cell key and its sort's copy 16, hash 4, order 4, partition flag and octant 2), slack
 // for vector growth. The indexer's other scratch (the coarser points' keys) comes on top.
-constexpr std::size_t kIndexBytesPerPoint = 84;
+constexpr std::size_t kIndexBytesPerPoint = 72;
 constexpr std::size_t kIndexerScratchBytes = std::size_t{16} << 20;
 constexpr std::size_t kChunkBufferPoints = 8192;  // 256 KB of buffered writes per chunk
 // Smaller chunks than this are not worth a task of their own.
@@ -531,7 +531,8 @@ class Builder {
             const io::PointRecord& p = batch.points.points[i];
             const auto scan = static_cast<std::uint16_t>(header_.scan_count > 0 ? first_scan + p.scan : 0);
             const auto hash_high = static_cast<std::uint32_t>(thinningHash({p.x, p.y, p.z}) >> 32);
-            batch.by_chunk[next[batch.cells[i]]++] = {p.x, p.y, p.z, p.rgb, p.intensity, scan, hash_high};
+            batch.by_chunk[next[batch.cells[i]]++] = {
+                placeOf(header_.cube, {p.x, p.y, p.z}), p.rgb, p.intensity, scan, 0, hash_high};
           }
         },
         [&](const Batch& batch) {
@@ -565,8 +566,7 @@ class Builder {
         const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(piece.size(), chunk->count() - first));
         chunk->read(first, std::span(piece).first(n));
         for (std::size_t i = 0; i < n; ++i) {
-          const CellKey cell = header_.cube.cellAt({piece[i].x, piece[i].y, piece[i].z}, chunk->key().level + 1);
-          children[static_cast<std::size_t>(cell.octant())]->add(piece[i]);
+          children[static_cast<std::size_t>(octantOf(chunk->key(), piece[i].place))]->add(piece[i]);
         }
       }
       for (auto& child : children) {
@@ -582,13 +582,17 @@ class Builder {
   }
 
   void writeNode(const CellKey& key, std::span<const BuildPoint> points, std::uint8_t child_mask) {
-    const std::array<double, 3> origin = header_.cube.cellMin(key);
+    // Each point at the middle of its place's step, relative to the cell's minimum corner.
+    const double step = std::ldexp(header_.cube.size, -32);
+    const double cell_size = header_.cube.cellSize(key.level);
+    const std::array<double, 3> corner{key.x * cell_size, key.y * cell_size, key.z * cell_size};
+    const auto relative = [&](const BuildPoint& p, std::size_t a) {
+      return static_cast<float>((p.place[a] + 0.5) * step - corner[a]);
+    };
     std::vector<std::byte> block(nodeBlockBytes(points.size(), header_.attributes));
     for (std::size_t i = 0; i < points.size(); ++i) {
       const BuildPoint& p = points[i];
-      encodePoint({static_cast<float>(p.x - origin[0]), static_cast<float>(p.y - origin[1]),
-                   static_cast<float>(p.z - origin[2]), p.rgb, p.intensity},
-                  block.data() + i * kPointBytes);
+      encodePoint({relative(p, 0), relative(p, 1), relative(p, 2), p.rgb, p.intensity}, block.data() + i * kPointBytes);
     }
     if (header_.attributes & kHasScanIndex) {
       std::byte* scans = block.data() + points.size() * kPointBytes;
