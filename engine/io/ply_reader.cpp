@@ -165,7 +165,17 @@ class PlyReader final : public PointReader {
       if (ascii_) {
         readAsciiRows(batch, take);
       } else {
-        readBinaryRows(batch, take);
+        switch (common_layout_) {
+          case Layout::kDouble:
+            readCommonRows<double>(batch, take);
+            break;
+          case Layout::kFloat:
+            readCommonRows<float>(batch, take);
+            break;
+          case Layout::kOther:
+            readBinaryRows(batch, take);
+            break;
+        }
       }
     }
     if (remaining_ == 0 && !checked_end_) checkEnd();
@@ -259,6 +269,54 @@ class PlyReader final : public PointReader {
       const Property& property = vertex->properties[static_cast<std::size_t>(roles_[r])];
       decoders_.push_back({r, property.offset, property.type});
     }
+    common_layout_ = commonLayout();
+  }
+
+  // Which of the layouts most writers use the file has: little-endian on a little-endian host,
+  // x y z all float or all double, colour (if any) 8-bit, intensity (if any) 16-bit, no normals.
+  enum class Layout { kOther, kFloat, kDouble };
+  Layout commonLayout() const {
+    if (ascii_ || swap_ || !elements_[vertex_index_].fixed_size || info_.attributes.normals) return Layout::kOther;
+    const auto types = roleTypes();
+    const auto only = [&](std::initializer_list<int> roles, Scalar type) {
+      return std::all_of(roles.begin(), roles.end(), [&](int r) { return types[static_cast<std::size_t>(r)] == type; });
+    };
+    if (info_.attributes.colour && !only({kRed, kGreen, kBlue}, Scalar::kUInt8)) return Layout::kOther;
+    if (info_.attributes.intensity && !only({kIntensity}, Scalar::kUInt16)) return Layout::kOther;
+    if (only({kX, kY, kZ}, Scalar::kFloat64)) return Layout::kDouble;
+    if (only({kX, kY, kZ}, Scalar::kFloat32)) return Layout::kFloat;
+    return Layout::kOther;
+  }
+
+  // The rows of a common layout: each field loaded as what it is, with no conversion through a
+  // double per property (what emit() makes of them is the same: whole 8-bit colours widened,
+  // 16-bit intensities as they are). A third of the time of a pass over a PLY.
+  template <typename Coordinate>
+  void readCommonRows(PointBatch& batch, std::uint64_t count) {
+    const Element& vertex = elements_[vertex_index_];
+    const auto offset = [&](Role role) { return vertex.properties[static_cast<std::size_t>(roles_[role])].offset; };
+    const std::size_t x = offset(kX), y = offset(kY), z = offset(kZ);
+    const bool colour = info_.attributes.colour, intensity = info_.attributes.intensity;
+    const std::size_t red = colour ? offset(kRed) : 0, green = colour ? offset(kGreen) : 0;
+    const std::size_t blue = colour ? offset(kBlue) : 0, level = intensity ? offset(kIntensity) : 0;
+    rows_.resize(static_cast<std::size_t>(count) * vertex.row_bytes);
+    source_.readExactly(rows_, "the vertex data");
+    for (std::uint64_t row = 0; row < count; ++row) {
+      const std::byte* base = rows_.data() + row * vertex.row_bytes;
+      PointRecord point{loadLittleEndian<Coordinate>(base + x),
+                        loadLittleEndian<Coordinate>(base + y),
+                        loadLittleEndian<Coordinate>(base + z),
+                        {0, 0, 0},
+                        0};
+      if (colour) {
+        point.rgb = {widenColour(static_cast<std::uint8_t>(base[red])),
+                     widenColour(static_cast<std::uint8_t>(base[green])),
+                     widenColour(static_cast<std::uint8_t>(base[blue]))};
+      }
+      if (intensity) point.intensity = loadLittleEndian<std::uint16_t>(base + level);
+      deliver(batch, point);
+    }
+    remaining_ -= count;
   }
 
   void skipElementsBeforeVertex() {
@@ -428,6 +486,7 @@ class PlyReader final : public PointReader {
     Scalar type;
   };
   std::vector<Decoder> decoders_;
+  Layout common_layout_ = Layout::kOther;
   std::uint64_t remaining_ = 0;
   bool checked_end_ = false;
   std::vector<std::byte> rows_;

@@ -71,6 +71,63 @@ TEST(PlyReader, BinaryLittleEndianWithColourIntensityAndIgnoredProperties) {
   EXPECT_EQ(points[0].rgb, (std::array<std::uint16_t, 3>{65535, 0, 100 * 257}));
 }
 
+// The layouts most writers use (little-endian; x y z all double or all float; 8-bit colour;
+// 16-bit intensity) are read without the general per-property decoding: the same records, the
+// same skipped NaN, as the ascii file of the same values (which takes the general one).
+TEST(PlyReader, TheCommonLayoutsReadAsTheGeneralDecodingDoes) {
+  test::TempDirectory dir;
+  constexpr int kPoints = 2500;
+  const auto value = [](int i, int axis) {
+    if (i == 1234 && axis == 1) return std::nan("");
+    return (axis == 0 ? 512000.0 : 0.0) + 0.25 * i + 0.125 * axis;  // exact in a float and in ascii
+  };
+  const auto colour = [](int i, int c) { return static_cast<std::uint8_t>((i * 7 + c * 50) % 256); };
+  const auto intensity = [](int i) { return static_cast<std::uint16_t>(i * 13 % 65536); };
+  const std::string tail =
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar label\n"
+      "property ushort intensity\nend_header\n";
+  std::string doubles = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(kPoints) +
+                        "\nproperty double x\nproperty double y\nproperty double z\n" + tail;
+  std::string floats = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(kPoints) +
+                       "\nproperty float x\nproperty float y\nproperty float z\n" + tail;
+  std::string ascii = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(kPoints) +
+                      "\nproperty double x\nproperty double y\nproperty double z\n" + tail;
+  for (int i = 0; i < kPoints; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      put(doubles, value(i, a));
+      put(floats, static_cast<float>(value(i, a)));
+      ascii += (std::isnan(value(i, a)) ? std::string("nan") : std::to_string(value(i, a))) + " ";
+    }
+    for (int c = 0; c < 3; ++c) {
+      put(doubles, colour(i, c));
+      put(floats, colour(i, c));
+      ascii += std::to_string(colour(i, c)) + " ";
+    }
+    for (std::string* binary : {&doubles, &floats}) {
+      put(*binary, std::uint8_t{9});
+      put(*binary, intensity(i));
+    }
+    ascii += "9 " + std::to_string(intensity(i)) + "\n";
+  }
+  auto general = openPly(dir.write("ascii.ply", ascii));
+  const auto expected = readAll(*general, 700);
+  ASSERT_EQ(expected.size(), kPoints - 1u);
+  EXPECT_EQ(general->counts().non_finite, 1u);
+  for (const char* name : {"doubles.ply", "floats.ply"}) {
+    auto reader = openPly(dir.write(name, name[0] == 'd' ? doubles : floats));
+    const auto points = readAll(*reader, 700);
+    ASSERT_EQ(points.size(), expected.size()) << name;
+    EXPECT_EQ(reader->counts().non_finite, 1u) << name;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      EXPECT_EQ(points[i].x, expected[i].x) << name << " " << i;
+      EXPECT_EQ(points[i].y, expected[i].y) << name << " " << i;
+      EXPECT_EQ(points[i].z, expected[i].z) << name << " " << i;
+      EXPECT_EQ(points[i].rgb, expected[i].rgb) << name << " " << i;
+      EXPECT_EQ(points[i].intensity, expected[i].intensity) << name << " " << i;
+    }
+  }
+}
+
 TEST(PlyReader, BigEndianDoublesInAnyPropertyOrderKeepUtmPrecision) {
   test::TempDirectory dir;
   std::string file =
