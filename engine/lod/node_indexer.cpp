@@ -193,8 +193,8 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     const auto begin = order_.begin() + slot.first;
     const auto end = begin + slot.own;
     const auto keep = begin + std::min(slot.quota, slot.own);
-    // By the whole hash: its high half first, the rest on a tie; ties of the whole (duplicates)
-    // are broken by input position, so the choice is deterministic.
+    // By the hash's high half, then by a hash of the place; ties of both (duplicates) are broken
+    // by input position, so the choice is deterministic.
     std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
       if (score_[a] != score_[b]) return score_[a] < score_[b];
       const std::uint64_t hash_a = placeHash(points[a].place);

@@ -32,8 +32,8 @@ std::uint64_t thinningHash(const Position& p);
 // right by 32 - L (cellOf), exactly the cell Cube::cellAt gives for the position it was made from
 // (both take the one product (p - origin) * (1 / size), the one scaled by 2^L, the other by 2^32).
 // Half the bytes of three doubles, and cells by shifts instead of floors; the positions written
-// come back within half a step (a quarter of a micrometre in a cube of a kilometre), far below
-// what the node blocks' floats keep of a cell.
+// come back within half a step (0.12 micrometres in a cube of a kilometre), far below any
+// scanner's noise.
 using GridPlace = std::array<std::uint32_t, 3>;
 GridPlace placeOf(const Cube& cube, const Position& p);
 // The coordinate of the cell of `level` (any level; beyond 32 the place's steps are the finest).
