@@ -157,7 +157,8 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     const std::uint32_t cy = slot.cell / kSamplingGrid % kSamplingGrid;
     const std::uint32_t cz = slot.cell % kSamplingGrid;
     const std::uint32_t z_low = cz - std::min(cz, kReach), z_high = std::min(cz + kReach, kSamplingGrid - 1);
-    neighbours_.clear();
+    std::array<std::uint32_t, (2 * kReach + 1) * (2 * kReach + 1) * (2 * kReach + 1)> points_around;
+    std::size_t around = 0;  // occupied cells in the neighbourhood: their points in points_around
     std::uint32_t held = 0, own = 0;
     for (std::uint32_t x = cx - std::min(cx, kReach); x <= std::min(cx + kReach, kSamplingGrid - 1); ++x) {
       for (std::uint32_t y = cy - std::min(cy, kReach); y <= std::min(cy + kReach, kSamplingGrid - 1); ++y) {
@@ -167,17 +168,15 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
         const std::uint32_t base = (x * kSamplingGrid + y) * kSamplingGrid;
         while (at < slots_.size() && slots_[at].cell < base + z_low) ++at;
         for (std::size_t other = at; other < slots_.size() && slots_[other].cell <= base + z_high; ++other) {
-          neighbours_.push_back(static_cast<std::uint32_t>(other));
+          points_around[around++] = slots_[other].coarser + slots_[other].own;
           held += slots_[other].coarser;
           own += slots_[other].own;
         }
       }
     }
-    const double mean = double(held + own) / static_cast<double>(neighbours_.size());
+    const double mean = double(held + own) / static_cast<double>(around);
     double occupied = 0.0;
-    for (const std::uint32_t other : neighbours_) {
-      occupied += std::min(1.0, double(slots_[other].coarser + slots_[other].own) / mean);
-    }
+    for (std::size_t n = 0; n < around; ++n) occupied += std::min(1.0, double(points_around[n]) / mean);
     slot.quota = 0;
     if (slot.own == 0 || occupied <= held) continue;
     const double fraction = std::min(1.0, (occupied - held) / own);

@@ -124,9 +124,8 @@ class NodeIndexer {
   std::vector<std::uint64_t> cell_keys_;     // per point: its grid cell << 32 | its index
   std::vector<std::uint64_t> coarser_keys_;  // per coarser point: its grid cell << 32
   std::vector<std::uint64_t> sort_scratch_;
-  std::vector<Slot> slots_;                // in cell order
-  std::vector<std::uint32_t> neighbours_;  // the occupied cells around one cell
-  std::vector<std::uint32_t> score_;       // per point: hash_high
+  std::vector<Slot> slots_;           // in cell order
+  std::vector<std::uint32_t> score_;  // per point: hash_high
   std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> selected_;
   std::vector<std::uint8_t> octants_;
