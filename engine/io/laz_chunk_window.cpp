@@ -117,15 +117,23 @@ LazChunkWindow::Chunk& LazChunkWindow::oldestDecoded() {
   fillLocked();
   assert(!window_.empty() && "decode() past the declared points");
   Chunk& oldest = window_.front();
-  if (oldest.state == State::queued) {
-    // No worker has taken it yet: decode it here rather than wait for one.
-    oldest.state = State::running;
+  // Until the oldest is decoded, decode here what no worker has taken yet: the oldest itself, or,
+  // while a worker is on it, the next chunk queued. Waiting instead kept the two threads of a
+  // two-core machine taking turns: the worker took each chunk first and the caller waited for it.
+  while (oldest.state != State::done) {
+    const auto queued =
+        std::find_if(window_.begin(), window_.end(), [](const Chunk& c) { return c.state == State::queued; });
+    if (queued == window_.end()) {
+      done_.wait(lock, [&] { return oldest.state == State::done; });
+      break;
+    }
+    Chunk& chunk = *queued;
+    chunk.state = State::running;
     lock.unlock();
-    decodeChunk(oldest);
+    decodeChunk(chunk);
     lock.lock();
-    oldest.state = State::done;
+    chunk.state = State::done;
   }
-  done_.wait(lock, [&] { return oldest.state == State::done; });
   return oldest;
 }
 
