@@ -14,7 +14,9 @@
 //      A task decodes its chunk through its own FileSource into the chunk's own buffer.
 //   2. decode() copies the records out of the oldest chunk; when that chunk is still queued, the
 //      calling thread decodes it itself (so progress never depends on a free worker), and when a
-//      worker is on it, waits for it. An emptied chunk leaves the window and the next one enters.
+//      worker is on it, decodes the next queued chunk meanwhile, waiting only when none is left
+//      (else the two threads of two cores take turns). An emptied chunk leaves the window and the
+//      next one enters.
 //   3. A chunk that fails keeps the records decoded before the failure and the exception: decode()
 //      hands those out, then throws the exception exactly where the sequential decoder would (on
 //      the call that asks for the record that failed), never before the records of earlier chunks.
