@@ -288,6 +288,12 @@ class PlyReader final : public PointReader {
     return Layout::kOther;
   }
 
+  // The next `count` fixed-size rows into rows_, in one read.
+  void readRowBlock(std::uint64_t count) {
+    rows_.resize(static_cast<std::size_t>(count) * elements_[vertex_index_].row_bytes);
+    source_.readExactly(rows_, "the vertex data");
+  }
+
   // The rows of a common layout: each field loaded as what it is, with no conversion through a
   // double per property (what emit() makes of them is the same: whole 8-bit colours widened,
   // 16-bit intensities as they are). A third of the time of a pass over a PLY.
@@ -299,8 +305,7 @@ class PlyReader final : public PointReader {
     const bool colour = info_.attributes.colour, intensity = info_.attributes.intensity;
     const std::size_t red = colour ? offset(kRed) : 0, green = colour ? offset(kGreen) : 0;
     const std::size_t blue = colour ? offset(kBlue) : 0, level = intensity ? offset(kIntensity) : 0;
-    rows_.resize(static_cast<std::size_t>(count) * vertex.row_bytes);
-    source_.readExactly(rows_, "the vertex data");
+    readRowBlock(count);
     for (std::uint64_t row = 0; row < count; ++row) {
       const std::byte* base = rows_.data() + row * vertex.row_bytes;
       PointRecord point{loadLittleEndian<Coordinate>(base + x),
@@ -411,8 +416,7 @@ class PlyReader final : public PointReader {
       }
       return;
     }
-    rows_.resize(static_cast<std::size_t>(count) * vertex.row_bytes);
-    source_.readExactly(rows_, "the vertex data");
+    readRowBlock(count);
     for (std::uint64_t row = 0; row < count; ++row) {
       const std::byte* base = rows_.data() + row * vertex.row_bytes;
       for (const Decoder& d : decoders_) value[d.role] = decode(base + d.offset, d.type, swap_);

@@ -100,16 +100,12 @@ void sortByCell(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& sc
 
 std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoint> points,
                                          std::span<const GridPlace> coarser) {
-  // A grid cell of the node is a cell of 7 levels further down (128 = 2^7).
+  // A grid cell of the node is a cell of 7 levels further down (128 = 2^7): per axis, the low 7
+  // bits of that cell's coordinate (the bits above are the node's, for every point inside it).
   const std::uint32_t grid_level = key.level + 7;
-  const std::array<std::uint64_t, 3> first{std::uint64_t{key.x} << 7, std::uint64_t{key.y} << 7,
-                                           std::uint64_t{key.z} << 7};
   auto locate = [&](const GridPlace& p) {
     std::uint64_t cell = 0;
-    for (std::size_t a = 0; a < 3; ++a) {
-      const std::uint64_t index = std::min<std::uint64_t>(cellOf(p[a], grid_level) - first[a], kSamplingGrid - 1);
-      cell = cell * kSamplingGrid + index;
-    }
+    for (std::size_t a = 0; a < 3; ++a) cell = cell * kSamplingGrid + (cellOf(p[a], grid_level) & (kSamplingGrid - 1));
     return cell;
   };
   static_assert(kSamplingGrid == 128, "the grid cells are the cells 7 levels below the node's");
