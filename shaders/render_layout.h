@@ -87,6 +87,28 @@ const uint kSurfelFacingTheEye = 0x80008000u;
 // the eye is drawn this size (its cost grows with its area). Discs are cast whole.
 const uint kMaxSplatHalfPx = 512u;
 
+// The splat covers a point's disc or square itself where that takes at most
+// kMaxDirectSplatWork loop iterations (its rows times its columns and one); a wider one it lists
+// for the wide pass (splat_wide.comp.glsl) in blocks of up to kWideSplatGroupSize rows, one work
+// group per block and an invocation per row. For lavapipe stops every loop of an invocation (of
+// each SIMD vector of them) after 65,535 iterations in all, silently (gallivm's
+// LP_MAX_TGSI_LOOP_ITERATIONS): a disc near the eye that one invocation covered was cut off part
+// way. Now an invocation of the splat runs at most 32 footprints of 1,024 iterations
+// (kChunkPoints / kSplatGroupSize), and one of the wide pass a row of at most 16,384 pixels.
+// The wide pass also shares a big disc's rows out among many invocations where one had them all.
+const uint kMaxDirectSplatWork = 1024u;
+const uint kWideSplatGroupSize = 256u;
+// The wide pass's work groups are a grid this many wide (a dispatch's x may be 65,535 at least).
+const uint kWideSplatGroupsX = 32768u;
+// The list of blocks for the wide pass: this header, then per block two words: its point's id,
+// and its first row | its number of rows << 16.
+struct WideSplatHeader {
+  uint groups[3];  // the wide pass's work groups, its indirect dispatch (z is 1)
+  uint claimed;    // blocks claimed, some perhaps beyond the capacity
+  uint listed;     // blocks written, each of those below it
+  uint reserved;
+};
+
 struct SplatPush {
   uint64_t chunks;      // SplatChunk[chunk_count]
   uint64_t visibility;  // uint64_t[width * height], cleared to all ones
@@ -101,6 +123,9 @@ struct SplatPush {
   uint perspective;
   uint shape;  // kSplatPoint, kSplatSquare or kSplatSurfel
   uint reserved;
+  uint64_t wide;       // WideSplatHeader, then the blocks listed for the wide pass
+  uint wide_capacity;  // blocks the list has room for
+  uint reserved2;
 };
 
 struct ResolvePush {

@@ -54,12 +54,10 @@ ComputePipeline::~ComputePipeline() {
   vkDestroyPipelineLayout(device_, layout_, nullptr);
 }
 
-void ComputePipeline::dispatchRaw(VkCommandBuffer commands, const void* push, std::uint32_t bytes,
-                                  std::uint32_t groups_x, std::uint32_t groups_y) const {
+void ComputePipeline::bindAndPush(VkCommandBuffer commands, const void* push, std::uint32_t bytes) const {
   assert(bytes == push_bytes_ && "push constants of another size than the pipeline was made for");
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   if (bytes > 0) vkCmdPushConstants(commands, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, push);
-  vkCmdDispatch(commands, groups_x, groups_y, 1);
 }
 
 }  // namespace plumb::gpu

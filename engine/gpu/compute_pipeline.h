@@ -26,12 +26,20 @@ class ComputePipeline {
   template <typename Push>
   void dispatch(VkCommandBuffer commands, const Push& push, std::uint32_t groups_x, std::uint32_t groups_y = 1) const {
     static_assert(sizeof(Push) <= 128, "push constants beyond the guaranteed 128 bytes");
-    dispatchRaw(commands, &push, sizeof(Push), groups_x, groups_y);
+    bindAndPush(commands, &push, sizeof(Push));
+    vkCmdDispatch(commands, groups_x, groups_y, 1);
+  }
+  // The same with the group counts read by the GPU from `groups` (a VkDispatchIndirectCommand at
+  // `offset`, in a buffer made with INDIRECT_BUFFER usage), as an earlier dispatch wrote them.
+  template <typename Push>
+  void dispatchIndirect(VkCommandBuffer commands, const Push& push, VkBuffer groups, VkDeviceSize offset) const {
+    static_assert(sizeof(Push) <= 128, "push constants beyond the guaranteed 128 bytes");
+    bindAndPush(commands, &push, sizeof(Push));
+    vkCmdDispatchIndirect(commands, groups, offset);
   }
 
  private:
-  void dispatchRaw(VkCommandBuffer commands, const void* push, std::uint32_t bytes, std::uint32_t groups_x,
-                   std::uint32_t groups_y) const;
+  void bindAndPush(VkCommandBuffer commands, const void* push, std::uint32_t bytes) const;
 
   VkDevice device_;
   std::string name_;

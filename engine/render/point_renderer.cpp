@@ -5,8 +5,9 @@
 //      NodeLoading::kWait, load them), as far as the upload ring has room.
 //   3. Write the chunk table: per chunk of each drawn node its clip and depth transforms
 //      (splat_transform.h).
-//   4. Record: clear the visibility buffer, splat, resolve, draw the overlays, and blit into the
-//      swapchain image when there is one; submit to signal the frame's value.
+//   4. Record: clear the visibility buffer, splat (the wide footprints listed by the splat then in
+//      a pass of their own), resolve, draw the overlays, and blit into the swapchain image when
+//      there is one; submit to signal the frame's value.
 //   5. Evict resident nodes beyond the GPU budget.
 
 #include "engine/render/point_renderer.h"
@@ -50,12 +51,18 @@ namespace {
 constexpr std::uint32_t kSplatCode[] =
 #include "shaders/splat.comp.inc"
     ;
+constexpr std::uint32_t kSplatWideCode[] =
+#include "shaders/splat_wide.comp.inc"
+    ;
 constexpr std::uint32_t kResolveCode[] =
 #include "shaders/resolve.comp.inc"
     ;
 
 static_assert(sizeof(shader::SplatChunk) == 176, "SplatChunk differs from its std430 layout");
-static_assert(sizeof(shader::SplatPush) == 56, "SplatPush differs from its std430 layout");
+static_assert(sizeof(shader::SplatPush) == 72, "SplatPush differs from its std430 layout");
+static_assert(sizeof(shader::WideSplatHeader) == 24, "WideSplatHeader differs from its std430 layout");
+// The wide list's blocks: a point's id and a row, two words each, after the header.
+constexpr VkDeviceSize kWideBlockBytes = 8;
 static_assert(sizeof(shader::ResolvePush) == 72, "ResolvePush differs from its std430 layout");
 static_assert(sizeof(lod::PackedPoint) == shader::kPointWords * 4, "the shaders read points as five words");
 
@@ -175,13 +182,15 @@ struct PointRenderer::Resources {
         allocator(a),
         nodes(n),
         splat(d, kSplatCode, sizeof(shader::SplatPush), "splat"),
+        splat_wide(d, kSplatWideCode, sizeof(shader::SplatPush), "splat, wide pass"),
         resolve(d, kResolveCode, sizeof(shader::ResolvePush), "resolve"),
         timeline(d),
         depth_out(d),
         ring(d, a, o.upload_ring_bytes),
         gpu_nodes(d, a, o.gpu_budget_bytes),
         surfels(o.background),
-        slots{Slot{gpu::CommandPool(d, "frame slot 0"), {}, {}}, Slot{gpu::CommandPool(d, "frame slot 1"), {}, {}}},
+        slots{Slot{gpu::CommandPool(d, "frame slot 0"), {}, {}, {}},
+              Slot{gpu::CommandPool(d, "frame slot 1"), {}, {}, {}}},
         readback_pool(d, "readback"),
         overlay_pass(d, a) {
     if (o.gpu_timing) {
@@ -214,12 +223,14 @@ struct PointRenderer::Resources {
     gpu::CommandPool pool;
     gpu::Buffer chunks;  // host-visible SplatChunk table
     gpu::Buffer clip;    // host-visible ClipPlanes, made with the first clipped frame
+    gpu::Buffer wide;    // the splat's list for its wide pass (WideSplatHeader, then blocks)
   };
 
   const gpu::Device& device;
   gpu::MemoryAllocator& allocator;
   lod::NodeCache& nodes;
   gpu::ComputePipeline splat;
+  gpu::ComputePipeline splat_wide;
   gpu::ComputePipeline resolve;
   gpu::TimelineSemaphore timeline;
   std::uint64_t submitted = 0;  // the last value a submission signals
@@ -258,6 +269,21 @@ struct PointRenderer::Resources {
     // The slot's last frame is done (paced): its table may go now.
     slot.chunks = gpu::Buffer(device, allocator, std::max<VkDeviceSize>(bytes, 2 * slot.chunks.size()),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, "chunk table");
+  }
+
+  // Room for `blocks` in the slot's wide list; returns how many it has.
+  std::uint32_t ensureWideCapacity(Slot& slot, std::uint64_t blocks) {
+    const VkDeviceSize bytes = sizeof(shader::WideSplatHeader) + blocks * kWideBlockBytes;
+    if (!slot.wide || slot.wide.size() < bytes) {
+      // The slot's last frame is done (paced): its list may go now.
+      slot.wide = gpu::Buffer(
+          device, allocator, std::max<VkDeviceSize>(bytes, 2 * slot.wide.size()),
+          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+          gpu::kDeviceMemory, "wide splat list");
+    }
+    return static_cast<std::uint32_t>(
+        std::min<VkDeviceSize>((slot.wide.size() - sizeof(shader::WideSplatHeader)) / kWideBlockBytes,
+                               std::numeric_limits<std::uint32_t>::max()));
   }
 
   // The region's planes, relative to its anchor, into the slot's ClipPlanes; its address.
@@ -512,9 +538,15 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   assert(chunk_count < (std::size_t{1} << (32 - shader::kChunkBits)) && "more chunks than ids: lower the point budget");
 
   // 4. Record and submit.
+  // The wide list has a block for each point drawn, and more for small frames: a block needs a
+  // footprint of more than a thousand pixels, so that even a frame of huge discs fills it only
+  // beyond any use (the splat then covers the rest itself, cut short on lavapipe alone).
+  const std::uint32_t wide_capacity = r.ensureWideCapacity(slot, std::max<std::uint64_t>(stats.points_drawn, 65536));
   vkCmdFillBuffer(commands, target.visibility.handle(), 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);
-  gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+  const shader::WideSplatHeader empty_list{{0, 0, 1}, 0, 0, 0};
+  vkCmdUpdateBuffer(commands, slot.wide.handle(), 0, sizeof empty_list, &empty_list);
+  gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
   const auto count = static_cast<std::uint32_t>(chunk_count);
   r.writeTimestamp(commands, value, 0);
@@ -529,8 +561,16 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
                                  static_cast<float>(pixels_per_metre),
                                  camera.projection == view::Projection::kPerspective ? 1u : 0u,
                                  shaderSplatShape(settings.splat),
+                                 0u,
+                                 slot.wide.address(),
+                                 wide_capacity,
                                  0u};
     r.splat.dispatch(commands, push, count);
+    gpu::memoryBarrier(
+        commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
+    r.splat_wide.dispatchIndirect(commands, push, slot.wide.handle(), 0);
     gpu::memoryBarrier(commands, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
   }

@@ -221,10 +221,12 @@ std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> points, do
           if (around.shape == Shape::kPlanar) {
             surfels[i].normal = encodeNormal(around.normal.x(), around.normal.y(), around.normal.z());
           } else {
-            // No plane around the point: the disc faces the eye, and beside an edge or a corner
-            // (neighbours on two planes) it would stand out past it, at a line's end too.
+            // No plane around the point: the disc faces the eye. Where its neighbours lie along a
+            // line, at half the radius: at a line's end, or along a thin edge, a whole disc would
+            // stand out past it. Where they are thick (a corner, clutter, a sparse scan's noisy
+            // wall) at the whole: half left a sparse real scan's walls 5.75 % open from 2 m.
             surfels[i].normal = kFacingTheEye;
-            surfels[i].radius_m *= 0.5f;
+            if (around.shape == Shape::kLinear) surfels[i].radius_m *= 0.5f;
           }
         }
       });

@@ -10,8 +10,8 @@
 //     surface wherever the scan's pattern leaves gaps (as the reference image of
 //     tests/support/surface_coverage.h draws it);
 //   - the normal: the least principal axis of the point and its 12 nearest, of its 40 nearest
-//     where the 12 lie along one of the scanner's lines; none (the disc faces the eye, at half
-//     the radius) where even those span no one plane.
+//     where the 12 lie along one of the scanner's lines; none (the disc faces the eye) where even
+//     those span no one plane, at half the radius where they lie along a line.
 // The renderer estimates them once per node, before it uploads the node (surfel_estimates.h).
 
 #include <cstdint>

@@ -91,6 +91,16 @@ class PointRendererTest : public test::GpuTest {
     return image;
   }
 
+  // The walls through `camera` without eye-dome lighting, every node drawn; kept for inspection as `name`.
+  io::RgbaImage renderFlat(const view::Camera& camera, const std::string& name) {
+    lod::NodeCache nodes(walls_, 64 << 20);
+    PointRenderer renderer(*device_, *allocator_, nodes);
+    renderer.renderComplete(camera, flat());
+    io::RgbaImage image = renderer.readColour();
+    keepForInspection(image, name);
+    return image;
+  }
+
   static inline std::unique_ptr<test::TempDirectory> directory_;
   static inline std::shared_ptr<const lod::Octree> walls_, far_walls_;
   static inline test::SceneOffset far_offset_;
@@ -184,6 +194,15 @@ TEST_F(PointRendererTest, CloseUpSurfacesStayClosed) {
   EXPECT_TRUE(near(image.pixel(column, row), kRed));
 }
 
+// A 400 x 300 orthographic close-up of the walls' front, `height_m` high, centred on (x, z).
+view::Camera closeUpOfTheWalls(double height_m, double x, double z) {
+  view::Camera camera = test::wallSceneFront(400, 300);
+  camera.ortho_height_m = height_m;
+  camera.position.x() = camera.target.x() = x;
+  camera.position.z() = camera.target.z() = z;
+  return camera;
+}
+
 // Surfels close a surface up to its outline and hardly past it: a close-up of the blue square's
 // top right corner, 600 pixels to the metre. Its points lie on a 2 cm grid, the last ones at
 // x = 0.98 and z = 1.98; each disc's radius is its 4th nearest neighbour's distance (2 cm inside,
@@ -191,15 +210,8 @@ TEST_F(PointRendererTest, CloseUpSurfacesStayClosed) {
 // off), so the square shows up to x = 1 and z = 2 (where its grid's next row would be) and never
 // a grid step beyond.
 TEST_F(PointRendererTest, CloseUpEdgesStaySharp) {
-  lod::NodeCache nodes(walls_, 64 << 20);
-  PointRenderer renderer(*device_, *allocator_, nodes);
-  view::Camera camera = test::wallSceneFront(400, 300);
-  camera.ortho_height_m = 0.5;
-  camera.position.x() = camera.target.x() = 0.9;
-  camera.position.z() = camera.target.z() = 1.9;
-  renderer.renderComplete(camera, flat());
-  const io::RgbaImage image = renderer.readColour();
-  keepForInspection(image, "close_up_edge");
+  const view::Camera camera = closeUpOfTheWalls(0.5, 0.9, 1.9);
+  const io::RgbaImage image = renderFlat(camera, "close_up_edge");
   const double metres_per_px = camera.ortho_height_m / camera.viewport_height_px;
   int holes = 0, spilled = 0, past_outline = 0;
   for (int row = 0; row < camera.viewport_height_px; ++row) {
@@ -218,6 +230,21 @@ TEST_F(PointRendererTest, CloseUpEdgesStaySharp) {
   // the 470 pixels of edge in view (the top edge from column 0 to 260, the right one from row 90
   // down).
   EXPECT_LT(past_outline, 470 * 6) << past_outline << " pixels past the outline";
+}
+
+// A disc near the eye covers more pixels than lavapipe lets one invocation's loops run
+// (65,535 iterations in all, silently): the splat hands such footprints to its wide pass, a row
+// per invocation. Here every disc spans the whole 400 x 300 view (2 cm of wall, its grid step,
+// are 300 pixels), and no pixel may show background.
+TEST_F(PointRendererTest, DiscsWiderThanAnInvocationsLoopsAreCastWhole) {
+  const view::Camera camera = closeUpOfTheWalls(0.02, 0.51, 1.01);
+  const io::RgbaImage image = renderFlat(camera, "wide_discs");
+  int holes = 0;
+  for (int row = 0; row < camera.viewport_height_px; ++row) {
+    for (int column = 0; column < camera.viewport_width_px; ++column)
+      holes += near(image.pixel(column, row), kBlue) ? 0 : 1;
+  }
+  EXPECT_EQ(holes, 0);
 }
 
 // Intensity is grey by the points' intensity (30,000 of 65,535 here); elevation runs the ramp

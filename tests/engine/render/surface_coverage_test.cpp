@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,7 @@ class SurfaceCoverageTest : public test::GpuTest {
   }
   static void TearDownTestSuite() {
     office_ = {};
+    room_.reset();
     directory_.reset();
   }
 
@@ -185,8 +187,33 @@ class SurfaceCoverageTest : public test::GpuTest {
     measure(scene, reference, view, 2'000'000, SplatShape::kPoint);
   }
 
+  // A real interior scan, PCL's room (112,586 points, 10 to 20 cm apart on its far wall, a
+  // surfel's disc a hundred pixels and more across from 2 m). No truth: the reference takes each
+  // point's normal from its 12 nearest, and the scan is one surface. Built on first use.
+  static const ReferenceScene& realRoom(const std::string& path) {
+    if (room_) return *room_;
+    ReferenceScene& scene = room_.emplace();
+    lod::BuildOptions build;
+    build.sources = lod::fileSources({path});
+    build.output = directory_->file("room.plumb");
+    lod::buildOctree(build);
+    scene.octree = lod::Octree::open(build.output);
+    lod::NodeCache nodes(scene.octree, std::uint64_t{256} << 20);
+    for (const lod::NodeInfo& info : scene.octree->nodes()) {
+      const std::shared_ptr<const lod::NodePoints> points = nodes.get(info.key);
+      for (std::size_t i = 0; i < points->size(); ++i) {
+        const std::array<double, 3> p = points->position(i);
+        scene.points.push_back({Eigen::Vector3d(p[0], p[1], p[2]), 0});
+      }
+    }
+    scene.spacings = test::localSpacings(scene.points, 0.5);
+    scene.normals = test::localNormals(scene.points, 0.5);
+    return scene;
+  }
+
   static inline std::unique_ptr<test::TempDirectory> directory_;
   static inline ReferenceScene office_;
+  static inline std::optional<ReferenceScene> room_;
 };
 
 // The headless demo's first view: along the corridor, its near left wall a metre away.
@@ -212,35 +239,40 @@ TEST_F(SurfaceCoverageTest, TheWholeBuildingIsClosed) {
                                           Eigen::Vector3d(bounds.max.data()), kWidth, kHeight)});
 }
 
-// A real interior scan, PCL's room (112,586 points, 10 to 20 cm apart on its far wall), the wall
-// from 2 m. No truth: the reference takes each point's normal from its 12 nearest, and the scan
-// is one surface. A known shortfall: 5.75 % of it shows background (99.97 % before the surfels),
-// where the target is 1 %: the octants' density scales assume their points spread evenly, and a
-// sparse scan's are not; the test fails if it gets worse.
-TEST_F(SurfaceCoverageTest, ARealRoomScanFromTwoMetresIsClosed) {
-  PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
-  lod::BuildOptions build;
-  build.sources = lod::fileSources({path});
-  build.output = directory_->file("room.plumb");
-  lod::buildOctree(build);
-  ReferenceScene room;
-  room.octree = lod::Octree::open(build.output);
-  lod::NodeCache nodes(room.octree, std::uint64_t{256} << 20);
-  for (const lod::NodeInfo& info : room.octree->nodes()) {
-    const std::shared_ptr<const lod::NodePoints> points = nodes.get(info.key);
-    for (std::size_t i = 0; i < points->size(); ++i) {
-      const std::array<double, 3> p = points->position(i);
-      room.points.push_back({Eigen::Vector3d(p[0], p[1], p[2]), 0});
-    }
-  }
-  room.spacings = test::localSpacings(room.points, 0.5);
-  room.normals = test::localNormals(room.points, 0.5);
+NamedView roomView(const std::string& name, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
   view::Camera camera;
-  camera.position = {6.1, 0.0, 0.2};
-  camera.target = {8.1, 0.0, 0.0};
+  camera.position = from;
+  camera.target = to;
   camera.viewport_width_px = kWidth;
   camera.viewport_height_px = kHeight;
-  expectClosed({"room_2m", camera}, room, 0.06);
+  return {name, camera};
+}
+
+// Its far wall from 2 m (5.75 % background before discs of neighbourhoods that span no one plane
+// were drawn at their full radius, and before the splat's wide pass: lavapipe had cut the
+// biggest discs off part way) and from 4 m, and the room along its other axis.
+TEST_F(SurfaceCoverageTest, ARealRoomScanFromTwoMetresIsClosed) {
+  PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
+  expectClosed(roomView("room_2m", {6.1, 0.0, 0.2}, {8.1, 0.0, 0.0}), realRoom(path));
+}
+
+TEST_F(SurfaceCoverageTest, ARealRoomScanFromFourMetresIsClosed) {
+  PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
+  expectClosed(roomView("room_4m", {4.1, 0.0, 0.2}, {8.1, 0.0, 0.0}), realRoom(path));
+}
+
+TEST_F(SurfaceCoverageTest, ARealRoomScanAlongItsOtherAxisIsClosed) {
+  PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
+  expectClosed(roomView("room_y", {0.0, 0.0, 0.2}, {0.0, 4.0, 0.0}), realRoom(path));
+}
+
+// A known shortfall: from 1 m, where a disc of the far wall is several hundred pixels across,
+// 2.09 % shows background, in crescents along the discs' rims: each node's discs are its own
+// points' spacing scaled by the density its ancestors add, assumed even (splat_spacing.h), which
+// makes them 3 % narrower than the reference's here. The test fails if it gets worse.
+TEST_F(SurfaceCoverageTest, ARealRoomScanFromOneMetreIsNearlyClosed) {
+  PLUMB_REQUIRE_SHARED_DATA(path, "pcl_room_scan1.pcd");
+  expectClosed(roomView("room_1m", {7.1, 0.0, 0.2}, {8.1, 0.0, 0.0}), realRoom(path), 0.025);
 }
 
 }  // namespace
