@@ -34,7 +34,8 @@ CellState& Grower::loaded(const CellKey& key) {
 // cell's r-cubes has about r^2 of area in each), sets its radius where it is less than half
 // of r (never below r / 8). Only where r came from the seed's data spacing (adaptToDataSpacing:
 // full detail, or a sparse scan), not from d: a cell denser than d asks is the octree's to thin,
-// and at medium detail the cell keeps r.
+// and at medium detail the cell keeps r. A point of a sparser surface in such a cell (a wall's
+// far face, scanned from afar) is searched within r still (processCell).
 void Grower::indexCell(CellState& state) const {
   state.radius = radius_;
   state.grid = PointGrid(parameters_.seed, radius_);

@@ -110,6 +110,7 @@ bool Grower::processCell(const CellKey& key) {
   struct NeighbourRun {
     std::uint32_t begin = 0;
     std::uint32_t end = 0;
+    std::uint32_t around = 0;  // the point's own surface's points and free ones within the radius, itself too
   };
   struct Queued {
     Assigned from;
@@ -130,8 +131,9 @@ bool Grower::processCell(const CellKey& key) {
     const bool measure = (neighbour_distance_count_ & 3u) == 0;
     Candidate candidate = bestSegment(state.points[i], measure, KnownNeighbour{from.segment, distance2});
     const auto listed_before = static_cast<std::uint32_t>(listed.size());
+    std::uint32_t around = 0;
     if (candidate.segment >= 0 &&
-        !continuesSurface(state, state.points[i], static_cast<std::uint32_t>(candidate.segment), &listed)) {
+        !continuesSurface(state, state.points[i], static_cast<std::uint32_t>(candidate.segment), &listed, &around)) {
       candidate.segment = -1;
     }
     if (candidate.segment < 0) {
@@ -142,13 +144,33 @@ bool Grower::processCell(const CellKey& key) {
     }
     assign(key, state, i, static_cast<std::uint32_t>(candidate.segment));
     std::optional<NeighbourRun> free_around;
-    if (options_.continuity > 0.0) free_around = NeighbourRun{listed_before, static_cast<std::uint32_t>(listed.size())};
+    if (options_.continuity > 0.0) {
+      free_around = NeighbourRun{listed_before, static_cast<std::uint32_t>(listed.size()), around};
+    }
     queue.push_back({{state.points[i], static_cast<std::uint32_t>(candidate.segment)}, free_around});
     neighbour_distance_sum_ += std::sqrt(distance2);
     ++neighbour_distance_count_;
     if (measure) observeSpacing(candidate.nearest_m);
     added = true;
   };
+  // Where the cell's radius is less than r (indexCell: its bulk is denser than the seed), a point
+  // with few neighbours within it lies on a sparser surface (a wall's face scanned from afar
+  // beside its other face scanned up close, in the same cells): its free points within r are
+  // visited too, from a grid of r made for the cell on first need, as every point was searched
+  // before the cell's radius shrank. Without that, such a surface stopped at its seed.
+  const double wide2 = radius_ * radius_;
+  auto visitWithinR = [&](const Assigned& from) {
+    if (!state.by_wide_grid) state.by_wide_grid.emplace(PointGrid(parameters_.seed, radius_), state.points);
+    const PointGrid wide_grid(parameters_.seed, radius_);
+    wide_grid.forEachAround(from.position, [&](const GridKey& grid_key) {
+      for (std::uint32_t i : state.by_wide_grid->at(grid_key)) {
+        if (state.assigned[i]) continue;
+        const double distance2 = (state.points[i] - from.position).squaredNorm();
+        if (distance2 > radius2 && distance2 <= wide2) visit(from, i, distance2);
+      }
+    });
+  };
+  const bool shrunk = state.radius < radius_;
   for (std::size_t next = 0; next < queue.size(); ++next) {
     const Assigned from = queue[next].from;
     if (const std::optional<NeighbourRun> run = queue[next].free_around) {
@@ -156,15 +178,22 @@ bool Grower::processCell(const CellKey& key) {
         const std::uint32_t i = listed[k];
         if (!state.assigned[i]) visit(from, i, (state.points[i] - from.position).squaredNorm());
       }
+      if (shrunk && run->around < kMinShrunkNeighbours + 1) visitWithinR(from);  // +1: the point itself
       continue;
     }
+    std::uint32_t around = 0;
     state.grid.forEachAround(from.position, [&](const GridKey& grid_key) {
       for (std::uint32_t i : state.by_grid.at(grid_key)) {
-        if (state.assigned[i]) continue;
+        const std::uint8_t owner = state.assigned[i];
+        if (owner != 0 && !(shrunk && owner == from.segment + 1)) continue;
         const double distance2 = (state.points[i] - from.position).squaredNorm();
-        if (distance2 <= radius2) visit(from, i, distance2);
+        if (distance2 > radius2) continue;
+        ++around;
+        if (owner == 0) visit(from, i, distance2);
       }
     });
+    if (shrunk && around < kMinShrunkNeighbours + 1)
+      visitWithinR(from);  // +1: the point itself, where it lies in the cell
   }
   processing_.reset();
   if (added) {
@@ -185,9 +214,9 @@ bool Grower::processCell(const CellKey& key) {
 // neighbours, not the plane, so that a seed plane still turned by its first few points grows.
 // Points of other segments (the wall along a floor's edge) are left out; with fewer than
 // kMinContinuityPoints on either side there is nothing to compare. Appends the free points
-// within r of p, in the grid's order, to `free_around`.
+// within r of p, in the grid's order, to `free_around`, and counts them and the segment's in `around`.
 bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment,
-                              std::vector<std::uint32_t>* free_around) const {
+                              std::vector<std::uint32_t>* free_around, std::uint32_t* around) const {
   if (options_.continuity <= 0.0) return true;
   // In single precision relative to the grid's origin (GridIndex::bucket): millimetres within
   // micrometres over tens of metres.
@@ -209,6 +238,7 @@ bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, 
       if (owner != 0 && owner != own) continue;
       const Eigen::Vector3f& q = bucket.offsets[k];
       if ((q - at).squaredNorm() > radius2) continue;
+      ++*around;
       if (owner == 0) free_around->push_back(bucket.indices[k]);
       const float d = normal.dot(q) + origin_offset;
       if (std::abs(d) >= window) continue;

@@ -141,7 +141,10 @@ struct CellState {
   // points are much denser than the seed's (at full detail, the surfaces nearer the scanner).
   double radius = 0.0;
   PointGrid grid{Eigen::Vector3d::Zero(), 1.0};
-  GridIndex by_grid;               // the points by cell of `grid`
+  GridIndex by_grid;  // the points by cell of `grid`
+  // Where `radius` is less than r: the points by cell of a grid of r, made when a point of a
+  // surface sparser than the cell's bulk is first searched within r (processCell).
+  std::optional<GridIndex> by_wide_grid;
   std::vector<Assigned> frontier;  // assigned points within r of this cell, not yet expanded here
 };
 
@@ -209,7 +212,7 @@ class Grower {
   void observeSpacing(double nearest_m);
   bool processCell(const CellKey& key);
   bool continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment,
-                        std::vector<std::uint32_t>* free_around) const;
+                        std::vector<std::uint32_t>* free_around, std::uint32_t* around) const;
   void refit(std::uint32_t segment);
   void updateThreshold(std::uint32_t segment);
 
@@ -242,6 +245,10 @@ class Grower {
   static constexpr std::uint32_t kMaxDealLevels = 6;
   // A cell's own search radius is at least r / kMaxRadiusShrink (indexCell).
   static constexpr double kMaxRadiusShrink = 8.0;
+  // A point with fewer neighbours than this within its cell's shrunk radius (its surface's own
+  // or free) lies on a surface sparser than the cell's bulk: it is searched within r as well.
+  // Within the shrunk radius, about two of its spacings, the bulk's points have a dozen.
+  static constexpr std::uint32_t kMinShrunkNeighbours = 3;
   // The seed planes' noise is measured on at least this many inliers, else on patches alone.
   static constexpr std::size_t kMinNoiseResiduals = 30;
   // The noise for the reach where t_p is given is measured on about this many inliers.
