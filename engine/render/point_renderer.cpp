@@ -43,6 +43,7 @@
 #include "engine/render/surfel_estimates.h"
 #include "engine/render/surfels.h"
 #include "engine/view/camera.h"
+#include "engine/view/camera_controls.h"
 #include "shaders/render_layout.h"
 
 namespace plumb::render {
@@ -248,6 +249,7 @@ struct PointRenderer::Resources {
   std::shared_ptr<const OverlayScene> overlay;
   PresentHook present_hook;
   std::vector<ChunkOrigin> last_chunks;  // of the last rendered frame
+  view::Camera last_camera;              // the last rendered frame's
   std::uint64_t frames = 0;
   std::uint64_t last_frame_value = 0;       // the timeline value of the last rendered frame
   VkQueryPool timestamps = VK_NULL_HANDLE;  // kTimestamps per frame slot, with gpu_timing
@@ -619,6 +621,7 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   }
   unsent.sent = true;
   r.last_frame_value = value;
+  r.last_camera = camera;
 
   // 5. Evict.
   r.gpu_nodes.evict(value, r.deletions);
@@ -708,9 +711,12 @@ std::optional<PickedPoint> PointRenderer::pick(int x, int y, int radius_px) {
     }
   }
   const float front_depth = nearest_depth * (1.0f + kPickFrontFraction) + kPickFrontMetres;
-  std::optional<PickedPoint> best;
-  long best_distance = 0;
-  std::uint64_t best_value = 0;
+  // The front pixel nearest the cursor (the nearer point on a tie), and the nodes whose points
+  // the window's front pixels show.
+  std::optional<std::uint64_t> hit;
+  int hit_column = 0, hit_row = 0;
+  long hit_distance = 0;
+  std::vector<lod::CellKey> shown_nodes;
   for (int row = y0; row <= y1; ++row) {
     for (int column = x0; column <= x1; ++column) {
       const std::uint64_t v =
@@ -718,23 +724,55 @@ std::optional<PickedPoint> PointRenderer::pick(int x, int y, int radius_px) {
       if (v == ~std::uint64_t{0} || depthOf(v) > front_depth) continue;
       const long distance = long{column - x} * (column - x) + long{row - y} * (row - y);
       if (distance > long{radius_px} * radius_px) continue;
-      if (best && (distance > best_distance || (distance == best_distance && v >= best_value))) continue;
-      best_distance = distance;
-      best_value = v;
-      best = PickedPoint{};
-      best->pixel_x = column;
-      best->pixel_y = row;
+      const lod::CellKey& node = r.last_chunks.at(static_cast<std::uint32_t>(v) >> shader::kChunkBits).node;
+      if (std::find(shown_nodes.begin(), shown_nodes.end(), node) == shown_nodes.end()) shown_nodes.push_back(node);
+      if (hit && (distance > hit_distance || (distance == hit_distance && v >= *hit))) continue;
+      hit = v;
+      hit_column = column;
+      hit_row = row;
+      hit_distance = distance;
     }
   }
-  if (!best) return std::nullopt;
-  const auto id = static_cast<std::uint32_t>(best_value);
-  const std::uint32_t depth_bits = static_cast<std::uint32_t>(best_value >> 32);
-  std::memcpy(&best->depth_m, &depth_bits, sizeof depth_bits);
-  const ChunkOrigin& chunk = r.last_chunks.at(id >> shader::kChunkBits);
-  best->node = chunk.node;
-  best->index = chunk.first_point + (id & (shader::kChunkPoints - 1));
-  const std::shared_ptr<const lod::NodePoints> points = r.nodes.get(chunk.node);
-  best->position = points->position(best->index);
+  if (!hit) return std::nullopt;
+  // The surface there: the pixel's centre at the depth the splat kept, a disc's plane's. Up close
+  // a point's disc covers many pixels, and which of the overlapping discs wins one is a matter of
+  // depths within the noise (or of ids): the point meant is the one nearest that surface point,
+  // among the points of the nodes the window shows.
+  const view::Ray ray = view::rayThroughPixel(r.last_camera, hit_column + 0.5, hit_row + 0.5);
+  const Eigen::Vector3d forward = view::viewDirection(r.last_camera);
+  const Eigen::Vector3d surface = ray.origin + ray.direction * (depthOf(*hit) / ray.direction.dot(forward));
+  PickedPoint best;
+  double best_distance2 = INFINITY;
+  const auto search = [&](const lod::CellKey& node) {
+    const std::shared_ptr<const lod::NodePoints> points = r.nodes.get(node);
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const std::array<double, 3> p = points->position(i);
+      const double distance2 = (Eigen::Vector3d(p[0], p[1], p[2]) - surface).squaredNorm();
+      if (distance2 >= best_distance2) continue;
+      best_distance2 = distance2;
+      best.position = p;
+      best.node = node;
+      best.index = static_cast<std::uint32_t>(i);
+    }
+  };
+  for (const lod::CellKey& node : shown_nodes) search(node);
+  // A nearer point may be another drawn node's, whose discs won no pixel of the window.
+  const lod::Cube& cube = r.nodes.octree().cube();
+  const std::array<double, 3> at{surface.x(), surface.y(), surface.z()};
+  for (std::size_t c = 0; c < r.last_chunks.size(); ++c) {
+    const lod::CellKey& node = r.last_chunks[c].node;
+    if (c > 0 && r.last_chunks[c - 1].node == node) continue;  // a node's chunks are consecutive
+    if (cube.squaredDistance(node, at) >= best_distance2) continue;
+    if (std::find(shown_nodes.begin(), shown_nodes.end(), node) == shown_nodes.end()) search(node);
+  }
+  const Eigen::Vector3d world(best.position[0], best.position[1], best.position[2]);
+  best.depth_m = static_cast<float>(forward.dot(world - r.last_camera.position));
+  // Its own pixel where that lies in the window, else the pixel it was found from.
+  const std::optional<Eigen::Vector2d> own = view::pixelOf(r.last_camera, world);
+  const bool own_in_window = own && (own->array().floor().matrix() - Eigen::Vector2d(x, y)).squaredNorm() <=
+                                        static_cast<double>(radius_px) * radius_px;
+  best.pixel_x = own_in_window ? static_cast<int>(std::floor(own->x())) : hit_column;
+  best.pixel_y = own_in_window ? static_cast<int>(std::floor(own->y())) : hit_row;
   return best;
 }
 

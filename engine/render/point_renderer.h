@@ -112,9 +112,9 @@ struct FrameStats {
 struct PickedPoint {
   std::array<double, 3> position;  // world coordinates, double precision
   lod::CellKey node;
-  std::uint32_t index = 0;  // in the node's points
-  int pixel_x = 0, pixel_y = 0;
-  float depth_m = 0.0f;  // in front of the eye
+  std::uint32_t index = 0;       // in the node's points
+  int pixel_x = 0, pixel_y = 0;  // its own, or where that lies outside the window, the pixel it was found from
+  float depth_m = 0.0f;          // its view depth, in front of the eye
 };
 
 class PointRenderer {
@@ -168,9 +168,10 @@ class PointRenderer {
   // Waits for the last frame and copies its colour out.
   io::RgbaImage readColour();
 
-  // Waits for the last frame; the point nearest to pixel (x, y) (rows from the top) within
-  // `radius_px` among those of the front surface there (within 2 % plus 2 cm of the nearest
-  // depth in that window), nearer to the eye on a tie; nothing when no point is there.
+  // Waits for the last frame; the point under pixel (x, y) (rows from the top): the surface the
+  // pixel nearest to it within `radius_px` shows of the front surface there (within 2 % plus
+  // 2 cm of the nearest depth in that window; the nearer on a tie), and on it the point nearest,
+  // among the points of the nodes the window shows; nothing when no point is there.
   std::optional<PickedPoint> pick(int x, int y, int radius_px = 3);
 
   // The last frame's target size, 0 x 0 before the first frame.

@@ -525,6 +525,31 @@ TEST_F(PointRendererTest, PickingReturnsTheVisiblePointInWorldCoordinates) {
   EXPECT_GT(picked, 60);  // most of the view shows walls
 }
 
+// Up close a point's disc covers the pixels around it, and which of the overlapping discs wins a
+// pixel is a matter of depths within the noise (here, none: the lower id): picking returns the
+// point whose own pixel is nearest the cursor, not the one whose disc won the cursor's pixel. The
+// blue square from 400 pixels a metre, its grid 8 pixels apart and each disc 16 across.
+TEST_F(PointRendererTest, PickingUpCloseReturnsThePointNearestTheCursor) {
+  lod::NodeCache nodes(walls_, 64 << 20);
+  PointRenderer renderer(*device_, *allocator_, nodes);
+  const view::Camera camera = closeUpOfTheWalls(0.75, 0.0, 1.5);
+  renderer.renderComplete(camera, flat());
+  const double metres_per_px = camera.ortho_height_m / camera.viewport_height_px;
+  std::mt19937 random(5);
+  for (int trial = 0; trial < 100; ++trial) {
+    const int x = 20 + static_cast<int>(random() % 360), y = 20 + static_cast<int>(random() % 260);
+    const std::optional<PickedPoint> pick = renderer.pick(x, y, 4);
+    ASSERT_TRUE(pick) << x << ", " << y;
+    // The square's grid point nearest the cursor (never a tie: pixel centres lie half-way
+    // between pixels, the grid's points on them).
+    const double cursor_x = (x + 0.5 - 0.5 * camera.viewport_width_px) * metres_per_px;
+    const double cursor_z = 1.5 - (y + 0.5 - 0.5 * camera.viewport_height_px) * metres_per_px;
+    EXPECT_NEAR(pick->position[0], std::round(cursor_x / test::kGridStep) * test::kGridStep, 1e-6) << x << ", " << y;
+    EXPECT_NEAR(pick->position[2], std::round(cursor_z / test::kGridStep) * test::kGridStep, 1e-6) << x << ", " << y;
+    EXPECT_NEAR(pick->position[1], 3.0, 1e-6);
+  }
+}
+
 TEST_F(PointRendererTest, ThePointBudgetHolds) {
   lod::NodeCache nodes(walls_, 64 << 20);
   PointRenderer renderer(*device_, *allocator_, nodes);
