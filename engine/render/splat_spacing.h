@@ -1,13 +1,14 @@
 #pragma once
-// How much denser the drawn cloud is than a node's own points, per octant of each drawn node:
-// the scale of its surfels' radii (surfels.h), which each node measures among its own points.
+// How much denser the drawn cloud is than a node's points and its ancestors', per octant of each
+// drawn node: the scale of its surfels' radii (surfels.h), which each node measures among those.
 //
-// A node's points are a subsample of its region; where the node is the finest drawn, its
-// ancestors' points lie among them, and where a child is drawn, the child's points too. The
-// drawn cloud's spacing there is the node's own spacing times sqrt(own points / drawn points).
-// The counts come from the octree's sampling: a parent keeps about one point per occupied cell
-// of its sampling grid (octree_format.h), so its points in an octant stand for the surface there
-// at its density, and its ancestors add about a third as many again (a quarter, a sixteenth, ...).
+// A node's points are a subsample of its region. Where the node is the finest drawn, the drawn
+// cloud there is its points and its ancestors': the scale is 1. Where a child is drawn, the
+// child's points lie among them, and the drawn cloud's spacing there is the measured one times
+// sqrt(measured points / drawn points), the counts from the octree's sampling: a parent keeps
+// about one point per occupied cell of its sampling grid (octree_format.h), so its points in an
+// octant stand for the surface there at its density, and its ancestors add a quarter as many, a
+// sixteenth, ... (a third at most; none for the root).
 
 #include <array>
 #include <cstdint>

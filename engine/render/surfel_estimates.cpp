@@ -2,6 +2,8 @@
 
 #include <tbb/task_group.h>
 
+#include <algorithm>
+#include <array>
 #include <new>
 
 #include "engine/lod/octree_storage.h"
@@ -17,9 +19,24 @@ struct SurfelEstimates::State {
   tbb::task_group own;  // runs the estimates without a runner
 };
 
-std::vector<Surfel> nodeSurfels(const lod::NodePoints& points, double cell_size) {
+std::vector<Surfel> nodeSurfels(const lod::NodePoints& points, const NodeAncestors& ancestors, double cell_size) {
   // Neighbours farther than an eighth of the node are no surface of it.
-  return estimateSurfels(points.points, cell_size, cell_size / 8.0);
+  const double reach = cell_size / 8.0;
+  std::vector<lod::PackedPoint> around;
+  for (const std::shared_ptr<const lod::NodePoints>& ancestor : ancestors) {
+    std::array<double, 3> offset;  // from the node's corner to the ancestor's
+    for (std::size_t a = 0; a < 3; ++a) offset[a] = ancestor->origin[a] - points.origin[a];
+    for (const lod::PackedPoint& q : ancestor->points) {
+      const double x = offset[0] + q.x, y = offset[1] + q.y, z = offset[2] + q.z;
+      if (std::min({x, y, z}) < -reach || std::max({x, y, z}) > cell_size + reach) continue;
+      lod::PackedPoint p = q;
+      p.x = static_cast<float>(x);
+      p.y = static_cast<float>(y);
+      p.z = static_cast<float>(z);
+      around.push_back(p);
+    }
+  }
+  return estimateSurfels(points.points, around, cell_size, reach);
 }
 
 SurfelEstimates::SurfelEstimates(BackgroundRunner runner)
@@ -32,7 +49,7 @@ SurfelEstimates::~SurfelEstimates() {
 }
 
 std::shared_ptr<const std::vector<Surfel>> SurfelEstimates::find(const std::shared_ptr<const lod::NodePoints>& points,
-                                                                 double cell_size) {
+                                                                 const NodeAncestors& ancestors, double cell_size) {
   {
     const std::scoped_lock lock(state_->mutex);
     const auto found = state_->ready.find(points->key);
@@ -40,10 +57,10 @@ std::shared_ptr<const std::vector<Surfel>> SurfelEstimates::find(const std::shar
     if (!state_->pending.insert(points->key).second) return nullptr;
     ++state_->outstanding;
   }
-  auto work = [state = state_, points, cell_size] {
+  auto work = [state = state_, points, ancestors, cell_size] {
     std::shared_ptr<const std::vector<Surfel>> surfels;
     try {
-      surfels = std::make_shared<const std::vector<Surfel>>(nodeSurfels(*points, cell_size));
+      surfels = std::make_shared<const std::vector<Surfel>>(nodeSurfels(*points, ancestors, cell_size));
     } catch (const std::bad_alloc&) {
       // Out of memory for the estimate: the node's points are drawn as single pixels.
       surfels = std::make_shared<const std::vector<Surfel>>(points->points.size());

@@ -21,6 +21,9 @@ struct NodePoints;
 
 namespace plumb::render {
 
+// A node's ancestors' points, all of them drawn wherever the node is: its surfels' neighbours too.
+using NodeAncestors = std::vector<std::shared_ptr<const lod::NodePoints>>;
+
 class SurfelEstimates {
  public:
   // Runs a piece of work in the background (the viewer's job system); empty: a task group of
@@ -33,10 +36,10 @@ class SurfelEstimates {
   SurfelEstimates(const SurfelEstimates&) = delete;
   SurfelEstimates& operator=(const SurfelEstimates&) = delete;
 
-  // The surfels of `points` (a node `cell_size` wide) once estimated; else null, their estimate
-  // started unless it is under way.
+  // The surfels of `points` (a node `cell_size` wide, with those `ancestors`) once estimated;
+  // else null, their estimate started unless it is under way.
   std::shared_ptr<const std::vector<Surfel>> find(const std::shared_ptr<const lod::NodePoints>& points,
-                                                  double cell_size);
+                                                  const NodeAncestors& ancestors, double cell_size);
   // Forgets a node's surfels (uploaded with its points).
   void forget(const lod::CellKey& key);
 
@@ -46,7 +49,7 @@ class SurfelEstimates {
   BackgroundRunner runner_;
 };
 
-// The surfels of a node `cell_size` wide, as the renderer estimates them.
-std::vector<Surfel> nodeSurfels(const lod::NodePoints& points, double cell_size);
+// The surfels of a node `cell_size` wide with those ancestors, as the renderer estimates them.
+std::vector<Surfel> nodeSurfels(const lod::NodePoints& points, const NodeAncestors& ancestors, double cell_size);
 
 }  // namespace plumb::render

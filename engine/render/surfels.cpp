@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 
+#include "engine/render/splat_spacing.h"
+
 namespace plumb::render {
 namespace {
 
@@ -93,10 +95,10 @@ struct Nearest {
 };
 
 // The nearest neighbours of point i within max_radius, ring by ring of grid cells around its
-// own until no cell farther out can hold a nearer one.
+// own until no cell farther out can hold a nearer one; only points below index `limit`.
 template <std::size_t capacity>
 Nearest<capacity> nearestOf(std::span<const lod::PackedPoint> points, const NodeGrid& grid, std::uint32_t i,
-                            float max_radius) {
+                            float max_radius, std::uint32_t limit = ~0u) {
   const lod::PackedPoint& p = points[i];
   const std::array<int, 3> home = grid.cellOf(p);
   const float max_radius2 = max_radius * max_radius;
@@ -114,7 +116,7 @@ Nearest<capacity> nearestOf(std::span<const lod::PackedPoint> points, const Node
         for (int x = home[0] - ring; x <= home[0] + ring; x += (face || ring == 0) ? 1 : 2 * ring) {
           if (x < 0 || x >= grid.cells()) continue;
           for (const std::uint32_t j : grid.at(x, y, z)) {
-            if (j == i) continue;
+            if (j == i || j >= limit) continue;
             const lod::PackedPoint& q = points[j];
             const float dx = q.x - p.x, dy = q.y - p.y, dz = q.z - p.z;
             const float d2 = dx * dx + dy * dy + dz * dz;
@@ -196,37 +198,71 @@ void decodeNormal(std::uint32_t packed, float& x, float& y, float& z) {
   z /= length;
 }
 
-std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> points, double cell_size, double max_radius) {
-  std::vector<Surfel> surfels(points.size());
+std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> own, std::span<const lod::PackedPoint> around,
+                                    double cell_size, double max_radius) {
+  std::vector<Surfel> surfels(own.size());
+  // The node's points first, then those around it: an index below own.size() is the node's.
+  std::vector<lod::PackedPoint> all(own.begin(), own.end());
+  all.insert(all.end(), around.begin(), around.end());
+  const std::span<const lod::PackedPoint> points(all);
   if (points.size() < 2) return surfels;
   // Cells about twice the spacing of points on one plane across the cube, so that the 27 cells
-  // around a point mostly hold its 8 nearest.
+  // around a point mostly hold its 8 nearest. Points around the cube fall in its border cells.
   const double plane_spacing = cell_size / std::sqrt(static_cast<double>(points.size()));
   const int cells = std::clamp(static_cast<int>(cell_size / (2.0 * plane_spacing)), 1, kMaxGridCells);
   const NodeGrid grid(points, static_cast<float>(cell_size), cells);
   const auto max_radius_f = static_cast<float>(max_radius);
+  const auto own_count = static_cast<std::uint32_t>(own.size());
+  const auto cell = static_cast<float>(cell_size);
+  // Per octant, the node's points and those around it inside its cell: how much denser the drawn
+  // cloud is than the node's own there.
+  const std::array<std::uint32_t, 8> own_octants = countOctants(own, 0.5f * cell);
+  std::vector<lod::PackedPoint> inside;
+  for (const lod::PackedPoint& p : around) {
+    if (std::min({p.x, p.y, p.z}) >= 0.0f && std::max({p.x, p.y, p.z}) < cell) inside.push_back(p);
+  }
+  const std::array<std::uint32_t, 8> around_octants = countOctants(inside, 0.5f * cell);
 
   tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+      tbb::blocked_range<std::size_t>(0, own.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
           const Nearest<kNormalNeighbours> nearest =
               nearestOf<kNormalNeighbours>(points, grid, static_cast<std::uint32_t>(i), max_radius_f);
           if (nearest.count < kSpacingNeighbour) continue;  // a lone point: one pixel
           surfels[i].radius_m = std::sqrt(nearest.distance2[kSpacingNeighbour - 1]);
-          Neighbourhood around = shapeOf(points, i, nearest);
-          if (around.shape == Shape::kLinear) {
-            around = shapeOf(points, i,
-                             nearestOf<kWideNeighbours>(points, grid, static_cast<std::uint32_t>(i), max_radius_f));
+          // Near the node's faces the neighbours beyond them (the siblings' points) are missing,
+          // and the spacing measured there is too wide: a disc would stand out past a surface's
+          // edge there. Its own points' spacing, scaled by the density the points around add in
+          // its octant, is the narrower.
+          const lod::PackedPoint& p = own[i];
+          const float to_face = std::min({p.x, p.y, p.z, cell - p.x, cell - p.y, cell - p.z});
+          if (to_face < surfels[i].radius_m) {
+            const Nearest<kSpacingNeighbour> own_nearest =
+                nearestOf<kSpacingNeighbour>(points, grid, static_cast<std::uint32_t>(i), max_radius_f, own_count);
+            const unsigned octant =
+                (p.x >= 0.5f * cell ? 1u : 0u) | (p.y >= 0.5f * cell ? 2u : 0u) | (p.z >= 0.5f * cell ? 4u : 0u);
+            if (own_nearest.count == kSpacingNeighbour) {
+              const float own_share = static_cast<float>(own_octants[octant]) /
+                                      static_cast<float>(own_octants[octant] + around_octants[octant]);
+              surfels[i].radius_m =
+                  std::min(surfels[i].radius_m, std::sqrt(own_nearest.distance2[kSpacingNeighbour - 1] * own_share));
+            }
           }
-          if (around.shape == Shape::kPlanar) {
-            surfels[i].normal = encodeNormal(around.normal.x(), around.normal.y(), around.normal.z());
+          Neighbourhood neighbourhood = shapeOf(points, i, nearest);
+          if (neighbourhood.shape == Shape::kLinear) {
+            neighbourhood = shapeOf(
+                points, i, nearestOf<kWideNeighbours>(points, grid, static_cast<std::uint32_t>(i), max_radius_f));
+          }
+          const Eigen::Vector3f& normal = neighbourhood.normal;
+          if (neighbourhood.shape == Shape::kPlanar) {
+            surfels[i].normal = encodeNormal(normal.x(), normal.y(), normal.z());
           } else {
             // No plane around the point: the disc faces the eye. Where its neighbours lie along a
             // line, at half the radius: at a line's end, or along a thin edge, a whole disc would
             // stand out past it. Where they are thick (a corner, clutter, a sparse scan's noisy
             // wall) at the whole: half left a sparse real scan's walls 5.75 % open from 2 m.
             surfels[i].normal = kFacingTheEye;
-            if (around.shape == Shape::kLinear) surfels[i].radius_m *= 0.5f;
+            if (neighbourhood.shape == Shape::kLinear) surfels[i].radius_m *= 0.5f;
           }
         }
       });

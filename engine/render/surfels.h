@@ -5,10 +5,14 @@
 // steps between splats for eye-dome lighting to outline, no square reaching past an edge seen
 // at a grazing angle.
 //
-// Per point of a node, from its nearest neighbours among the node's points:
+// Per point of a node, from its nearest neighbours among the node's points and its ancestors'
+// (drawn wherever the node is, so that the node's discs fit the drawn cloud where it is the
+// finest drawn; where its children are drawn too, splat_spacing.h scales them down):
 //   - the spacing: the distance to its 4th nearest, the radius of a disc that closes the
 //     surface wherever the scan's pattern leaves gaps (as the reference image of
-//     tests/support/surface_coverage.h draws it);
+//     tests/support/surface_coverage.h draws it); near the node's faces, where its siblings'
+//     points would be, no more than its own points' spacing scaled by the density its
+//     ancestors add there;
 //   - the normal: the least principal axis of the point and its 12 nearest, of its 40 nearest
 //     where the 12 lie along one of the scanner's lines; none (the disc faces the eye) where even
 //     those span no one plane, at half the radius where they lie along a line.
@@ -32,9 +36,12 @@ struct Surfel {
   float radius_m = 0.0f;                 // 0: a lone point (fewer than 4 neighbours within max_radius): one pixel
 };
 
-// The surfels of a node's `points` (positions relative to the node's corner, inside a cube of
-// side `cell_size`). Neighbours farther than `max_radius` are not looked for.
-std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> points, double cell_size, double max_radius);
+// The surfels of a node's `own` points (positions relative to the node's corner, inside a cube of
+// side `cell_size`), their neighbours among them and the points `around` them that the renderer
+// draws with the node (its ancestors', in the node's frame), which get no surfels of their own.
+// Neighbours farther than `max_radius` are not looked for.
+std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> own, std::span<const lod::PackedPoint> around,
+                                    double cell_size, double max_radius);
 
 // The octahedral encoding of a unit normal, and back (the shader's decoding is the same).
 std::uint32_t encodeNormal(float x, float y, float z);

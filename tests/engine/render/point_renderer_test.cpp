@@ -224,12 +224,16 @@ TEST_F(PointRendererTest, CloseUpEdgesStaySharp) {
       if (blue && (x > 1.0 + test::kGridStep || z > 2.0 + test::kGridStep)) ++spilled;
     }
   }
+  std::printf("%d holes, %d pixels past the outline, %d more than a grid step past it\n", holes, past_outline, spilled);
   EXPECT_EQ(holes, 0);
   EXPECT_EQ(spilled, 0);
-  // Past the outline, the edges' discs: on average less than half a grid step (6 pixels) along
-  // the 470 pixels of edge in view (the top edge from column 0 to 260, the right one from row 90
-  // down).
-  EXPECT_LT(past_outline, 470 * 6) << past_outline << " pixels past the outline";
+  // Past the outline, the edges' discs: an edge point's reaches (sqrt(2) - 1) grid steps past it
+  // (5 pixels), a corner's a step. On average less than 6.5 pixels along the 470 pixels of edge
+  // in view (the top edge from column 0 to 260, the right one from row 90 down): 5.1 while each
+  // node's discs were its own points' spacing shrunk by its ancestors' density assumed even, 6.0
+  // since they are measured among its ancestors' points too (a sparse real scan seen from 1 m
+  // closed: tests/engine/render/surface_coverage_test.cpp).
+  EXPECT_LT(past_outline, 470 * 13 / 2) << past_outline << " pixels past the outline";
 }
 
 // A disc near the eye covers more pixels than lavapipe lets one invocation's loops run

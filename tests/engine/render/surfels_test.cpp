@@ -53,7 +53,7 @@ TEST(Surfels, APlaneGivesItsNormalAndItsSpacing) {
   const Eigen::Vector3d normal = Eigen::Vector3d(0.2, -0.4, 1.0).normalized();
   const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
   const std::vector<lod::PackedPoint> points = gridPlane({1.0, 1.0, 1.0}, u, v, 0.02, 0.02, 40, 40);
-  const std::vector<Surfel> surfels = estimateSurfels(points, 2.0, 0.25);
+  const std::vector<Surfel> surfels = estimateSurfels(points, {}, 2.0, 0.25);
   ASSERT_EQ(surfels.size(), points.size());
   // The 4th nearest on a square grid: the 4 at one step; along an edge, 3 there and the 4th
   // diagonal (2.8 cm); at a corner, two steps away (4 cm).
@@ -72,7 +72,7 @@ TEST(Surfels, APlaneGivesItsNormalAndItsSpacing) {
 TEST(Surfels, LinesFarApartStillSpanTheirPlane) {
   const std::vector<lod::PackedPoint> points =
       gridPlane({1.0, 1.0, 1.0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 0.08, 0.008, 100, 12);
-  const std::vector<Surfel> surfels = estimateSurfels(points, 2.0, 0.25);
+  const std::vector<Surfel> surfels = estimateSurfels(points, {}, 2.0, 0.25);
   int planar = 0;
   for (const Surfel& s : surfels) {
     if (s.normal != kFacingTheEye && std::abs(normalOf(s).y()) > 0.999f) ++planar;
@@ -84,7 +84,7 @@ TEST(Surfels, ALineAloneFacesTheEyeAndALonePointIsOnePixel) {
   std::vector<lod::PackedPoint> points;
   for (int i = 0; i < 50; ++i) points.push_back(at({0.5 + 0.01 * i, 1.0, 1.0}));
   points.push_back(at({1.8, 1.8, 1.8}));
-  const std::vector<Surfel> surfels = estimateSurfels(points, 2.0, 0.25);
+  const std::vector<Surfel> surfels = estimateSurfels(points, {}, 2.0, 0.25);
   EXPECT_EQ(surfels[25].normal, kFacingTheEye);
   EXPECT_NEAR(surfels[25].radius_m, 0.5 * 0.02, 1e-4);  // half the 4th nearest: beside a line's end
   EXPECT_EQ(surfels.back().radius_m, 0.0f);
@@ -98,19 +98,19 @@ TEST(SplatSpacing, OctantsSplitAtTheNodesCentre) {
 }
 
 // A parent with 300 points in octant 5 and 600 elsewhere, its child there drawn with 1,200:
-// where the child is finest, the drawn cloud is the child's and the ancestors' (300 x 4/3), so
-// the child's discs shrink by sqrt(1200 / 1600); the parent's points in that octant shrink by
-// sqrt(300 / 1600); its other octants and a root alone keep their own spacing.
+// where the child is finest, its discs were measured among the drawn cloud (its points and its
+// ancestors'); the parent's points in that octant, measured among the parent's and its
+// parent's (300 x 5/4), shrink by sqrt(375 / 1575); its other octants keep their spacing.
 TEST(SplatSpacing, ScalesFollowTheDrawnDensity) {
   const lod::CellKey root{0, 0, 0, 0};
-  DrawnNode parent{root, 900, {100, 100, 100, 100, 100, 300, 50, 50}};
-  DrawnNode child{root.child(5), 1200, {150, 150, 150, 150, 150, 150, 150, 150}};
+  DrawnNode parent{root.child(3), 900, {100, 100, 100, 100, 100, 300, 50, 50}};
+  DrawnNode child{root.child(3).child(5), 1200, {150, 150, 150, 150, 150, 150, 150, 150}};
   const std::vector<std::array<float, 8>> scales = octantRadiusScales(std::vector<DrawnNode>{parent, child});
   ASSERT_EQ(scales.size(), 2u);
   for (int o = 0; o < 8; ++o) {
-    const float expected = o == 5 ? std::sqrt(300.0f / 1600.0f) : 1.0f;
+    const float expected = o == 5 ? std::sqrt(375.0f / 1575.0f) : 1.0f;
     EXPECT_NEAR(scales[0][static_cast<std::size_t>(o)], expected, 1e-6) << "parent octant " << o;
-    EXPECT_NEAR(scales[1][static_cast<std::size_t>(o)], std::sqrt(1200.0f / 1600.0f), 1e-6) << "child octant " << o;
+    EXPECT_NEAR(scales[1][static_cast<std::size_t>(o)], 1.0f, 1e-6) << "child octant " << o;
   }
 }
 
