@@ -9,8 +9,6 @@
 #include <array>
 #include <cmath>
 
-#include "engine/render/splat_spacing.h"
-
 namespace plumb::render {
 namespace {
 
@@ -95,10 +93,10 @@ struct Nearest {
 };
 
 // The nearest neighbours of point i within max_radius, ring by ring of grid cells around its
-// own until no cell farther out can hold a nearer one; only points below index `limit`.
+// own until no cell farther out can hold a nearer one.
 template <std::size_t capacity>
 Nearest<capacity> nearestOf(std::span<const lod::PackedPoint> points, const NodeGrid& grid, std::uint32_t i,
-                            float max_radius, std::uint32_t limit = ~0u) {
+                            float max_radius) {
   const lod::PackedPoint& p = points[i];
   const std::array<int, 3> home = grid.cellOf(p);
   const float max_radius2 = max_radius * max_radius;
@@ -116,7 +114,7 @@ Nearest<capacity> nearestOf(std::span<const lod::PackedPoint> points, const Node
         for (int x = home[0] - ring; x <= home[0] + ring; x += (face || ring == 0) ? 1 : 2 * ring) {
           if (x < 0 || x >= grid.cells()) continue;
           for (const std::uint32_t j : grid.at(x, y, z)) {
-            if (j == i || j >= limit) continue;
+            if (j == i) continue;
             const lod::PackedPoint& q = points[j];
             const float dx = q.x - p.x, dy = q.y - p.y, dz = q.z - p.z;
             const float d2 = dx * dx + dy * dy + dz * dz;
@@ -212,16 +210,6 @@ std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> own, std::
   const int cells = std::clamp(static_cast<int>(cell_size / (2.0 * plane_spacing)), 1, kMaxGridCells);
   const NodeGrid grid(points, static_cast<float>(cell_size), cells);
   const auto max_radius_f = static_cast<float>(max_radius);
-  const auto own_count = static_cast<std::uint32_t>(own.size());
-  const auto cell = static_cast<float>(cell_size);
-  // Per octant, the node's points and those around it inside its cell: how much denser the drawn
-  // cloud is than the node's own there.
-  const std::array<std::uint32_t, 8> own_octants = countOctants(own, 0.5f * cell);
-  std::vector<lod::PackedPoint> inside;
-  for (const lod::PackedPoint& p : around) {
-    if (std::min({p.x, p.y, p.z}) >= 0.0f && std::max({p.x, p.y, p.z}) < cell) inside.push_back(p);
-  }
-  const std::array<std::uint32_t, 8> around_octants = countOctants(inside, 0.5f * cell);
 
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, own.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -230,24 +218,6 @@ std::vector<Surfel> estimateSurfels(std::span<const lod::PackedPoint> own, std::
               nearestOf<kNormalNeighbours>(points, grid, static_cast<std::uint32_t>(i), max_radius_f);
           if (nearest.count < kSpacingNeighbour) continue;  // a lone point: one pixel
           surfels[i].radius_m = std::sqrt(nearest.distance2[kSpacingNeighbour - 1]);
-          // Near the node's faces the neighbours beyond them (the siblings' points) are missing,
-          // and the spacing measured there is too wide: a disc would stand out past a surface's
-          // edge there. Its own points' spacing, scaled by the density the points around add in
-          // its octant, is the narrower.
-          const lod::PackedPoint& p = own[i];
-          const float to_face = std::min({p.x, p.y, p.z, cell - p.x, cell - p.y, cell - p.z});
-          if (to_face < surfels[i].radius_m) {
-            const Nearest<kSpacingNeighbour> own_nearest =
-                nearestOf<kSpacingNeighbour>(points, grid, static_cast<std::uint32_t>(i), max_radius_f, own_count);
-            const unsigned octant =
-                (p.x >= 0.5f * cell ? 1u : 0u) | (p.y >= 0.5f * cell ? 2u : 0u) | (p.z >= 0.5f * cell ? 4u : 0u);
-            if (own_nearest.count == kSpacingNeighbour) {
-              const float own_share = static_cast<float>(own_octants[octant]) /
-                                      static_cast<float>(own_octants[octant] + around_octants[octant]);
-              surfels[i].radius_m =
-                  std::min(surfels[i].radius_m, std::sqrt(own_nearest.distance2[kSpacingNeighbour - 1] * own_share));
-            }
-          }
           Neighbourhood neighbourhood = shapeOf(points, i, nearest);
           if (neighbourhood.shape == Shape::kLinear) {
             neighbourhood = shapeOf(

@@ -10,9 +10,7 @@
 // finest drawn; where its children are drawn too, splat_spacing.h scales them down):
 //   - the spacing: the distance to its 4th nearest, the radius of a disc that closes the
 //     surface wherever the scan's pattern leaves gaps (as the reference image of
-//     tests/support/surface_coverage.h draws it); near the node's faces, where its siblings'
-//     points would be, no more than its own points' spacing scaled by the density its
-//     ancestors add there;
+//     tests/support/surface_coverage.h draws it);
 //   - the normal: the least principal axis of the point and its 12 nearest, of its 40 nearest
 //     where the 12 lie along one of the scanner's lines; none (the disc faces the eye) where even
 //     those span no one plane, at half the radius where they lie along a line.
