@@ -564,10 +564,12 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
   assert(chunk_count < (std::size_t{1} << (32 - shader::kChunkBits)) && "more chunks than ids: lower the point budget");
 
   // 4. Record and submit.
-  // The wide list has a block for each point drawn, and more for small frames: a block needs a
-  // footprint of more than a thousand pixels, so that even a frame of huge discs fills it only
-  // beyond any use (the splat then covers the rest itself, cut short on lavapipe alone).
-  const std::uint32_t wide_capacity = r.ensureWideCapacity(slot, std::max<std::uint64_t>(stats.points_drawn, 65536));
+  // The wide list has a block for every eighth point drawn, and more for small frames: a block
+  // needs a footprint of more than a thousand pixels, so that 2 M points fill it with discs
+  // covering the screen 270 times over (1280 x 720), beyond any use; the splat then covers the
+  // rest itself, cut short on lavapipe alone. 1 MB per million points, per frame in flight.
+  const std::uint32_t wide_capacity =
+      r.ensureWideCapacity(slot, std::max<std::uint64_t>(stats.points_drawn / 8, 65536));
   vkCmdFillBuffer(commands, target.visibility.handle(), 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);
   const shader::WideSplatHeader empty_list{{0, 0, 1}, 0, 0, 0};
   vkCmdUpdateBuffer(commands, slot.wide.handle(), 0, sizeof empty_list, &empty_list);
