@@ -28,8 +28,9 @@ const Eigen::Vector3d kOffset(512000.0, 5403000.0, 250.0);
 // radius shrank to the dense face's spacing, and a click on the sparse face grew the other one
 // whole and its own hardly past the seed: 436 of its 53,000 points from a click at x = 2 m, 955
 // from the viewer's demo click at 2.8 m. Clicked anywhere along its middle, from 3 m, the grow
-// now takes the whole face clicked, at full detail. (Within 1.5 m of the corridor's ends the face
-// has too few points at this detail to grow.)
+// now takes the whole face clicked, at full detail. (x = 1 to 1.9 m is office 1's doorway; within
+// 0.6 m of the end walls, seen head-on and dense, they fill the seed sphere and the face grows
+// little still.)
 TEST(OfficeWalls, TheCorridorWallGrowsWholeWhereverItIsClicked) {
   const test::TempDirectory directory("plumb_OfficeWalls");
   sim::SimulationRequest request;
