@@ -159,9 +159,9 @@ bool Grower::processCell(const CellKey& key) {
   // visited too, from a grid of r made for the cell on first need, as every point was searched
   // before the cell's radius shrank. Without that, such a surface stopped at its seed.
   const double wide2 = radius_ * radius_;
+  const PointGrid wide_grid(parameters_.seed, radius_);
   auto visitWithinR = [&](const Assigned& from) {
-    if (!state.by_wide_grid) state.by_wide_grid.emplace(PointGrid(parameters_.seed, radius_), state.points);
-    const PointGrid wide_grid(parameters_.seed, radius_);
+    if (!state.by_wide_grid) state.by_wide_grid.emplace(wide_grid, state.points);
     wide_grid.forEachAround(from.position, [&](const GridKey& grid_key) {
       for (std::uint32_t i : state.by_wide_grid->at(grid_key)) {
         if (state.assigned[i]) continue;

@@ -63,13 +63,16 @@ void main() {
     }
     const uint rows = uint(max(f.rows.y - f.rows.x, 0)), columns = uint(max(f.columns.y - f.columns.x, 0));
     if (f.shape == kSplatPoint || rows == 0u || columns == 0u) continue;
+    if (rows * (columns + 1u) <= kMaxDirectSplatWork) {
+      coverRows(f, visibility, push.width, 0, 1);
+      continue;
+    }
     const uint blocks = (rows + kWideSplatGroupSize - 1u) / kWideSplatGroupSize;
     Wide wide = Wide(push.wide);
-    uint first_block = 0u;
-    if (rows * (columns + 1u) > kMaxDirectSplatWork) first_block = atomicAdd(wide.header.claimed, blocks);
+    const uint first_block = atomicAdd(wide.header.claimed, blocks);
     // Where the list is full (far beyond any real frame: each block needs a footprint of more
-    // than 1,024 pixels), the splat covers it itself, as it does every small one.
-    if (rows * (columns + 1u) <= kMaxDirectSplatWork || first_block + blocks > push.wide_capacity) {
+    // than 1,024 pixels), the splat covers it itself.
+    if (first_block + blocks > push.wide_capacity) {
       coverRows(f, visibility, push.width, 0, 1);
       continue;
     }

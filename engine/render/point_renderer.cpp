@@ -273,26 +273,6 @@ struct PointRenderer::Resources {
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::kHostMemory, "chunk table");
   }
 
-  // The points of a node's ancestors that have any, parent first; none while one of them is not
-  // loaded (a streaming frame starts its load, and the node waits for a later frame).
-  std::optional<NodeAncestors> ancestorsOf(const lod::Octree& octree, const lod::CellKey& key, NodeLoading loading) {
-    NodeAncestors ancestors;
-    bool complete = true;
-    for (std::optional<lod::CellKey> above = key.parent(); above; above = above->parent()) {
-      const lod::NodeInfo* info = octree.find(*above);
-      if (info == nullptr || info->point_count == 0) continue;
-      std::shared_ptr<const lod::NodePoints> points =
-          loading == NodeLoading::kWait ? nodes.get(*above) : nodes.tryGet(*above);
-      if (points) {
-        ancestors.push_back(std::move(points));
-      } else {
-        complete = false;  // the others' loads are started too
-      }
-    }
-    if (!complete) return std::nullopt;
-    return ancestors;
-  }
-
   // Room for `blocks` in the slot's wide list; returns how many it has.
   std::uint32_t ensureWideCapacity(Slot& slot, std::uint64_t blocks) {
     const VkDeviceSize bytes = sizeof(shader::WideSplatHeader) + blocks * kWideBlockBytes;
@@ -469,7 +449,8 @@ FrameStats PointRenderer::render(const view::Camera& camera, const RenderSetting
         // Headless renders wait for the surfels; a streaming frame uploads the node once they
         // are ready.
         const double cell_size = octree.cube().cellSize(info->key.level);
-        const std::optional<NodeAncestors> ancestors = r.ancestorsOf(octree, info->key, loading);
+        // A streaming frame waits for the ancestors' points too (the parent stands in meanwhile).
+        const std::optional<NodeAncestors> ancestors = nodeAncestors(r.nodes, info->key, loading == NodeLoading::kWait);
         std::shared_ptr<const std::vector<Surfel>> surfels;
         if (ancestors && loading == NodeLoading::kWait) {
           surfels = std::make_shared<const std::vector<Surfel>>(nodeSurfels(*points, *ancestors, cell_size));

@@ -6,6 +6,8 @@
 #include <array>
 #include <new>
 
+#include "engine/lod/node_cache.h"
+#include "engine/lod/octree.h"
 #include "engine/lod/octree_storage.h"
 
 namespace plumb::render {
@@ -37,6 +39,23 @@ std::vector<Surfel> nodeSurfels(const lod::NodePoints& points, const NodeAncesto
     }
   }
   return estimateSurfels(points.points, around, cell_size, reach);
+}
+
+std::optional<NodeAncestors> nodeAncestors(lod::NodeCache& nodes, const lod::CellKey& key, bool wait) {
+  NodeAncestors ancestors;
+  bool complete = true;
+  for (std::optional<lod::CellKey> above = key.parent(); above; above = above->parent()) {
+    const lod::NodeInfo* info = nodes.octree().find(*above);
+    if (info == nullptr || info->point_count == 0) continue;
+    std::shared_ptr<const lod::NodePoints> points = wait ? nodes.get(*above) : nodes.tryGet(*above);
+    if (points) {
+      ancestors.push_back(std::move(points));
+    } else {
+      complete = false;  // the others' loads are started too
+    }
+  }
+  if (!complete) return std::nullopt;
+  return ancestors;
 }
 
 SurfelEstimates::SurfelEstimates(BackgroundRunner runner)

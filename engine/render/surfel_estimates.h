@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -16,13 +17,19 @@
 #include "engine/render/surfels.h"
 
 namespace plumb::lod {
+class NodeCache;
 struct NodePoints;
-}
+}  // namespace plumb::lod
 
 namespace plumb::render {
 
 // A node's ancestors' points, all of them drawn wherever the node is: its surfels' neighbours too.
 using NodeAncestors = std::vector<std::shared_ptr<const lod::NodePoints>>;
+
+// The points of the ancestors of node `key` that have any, parent first, from `nodes`: loaded
+// where they are not (`wait`), else their loads started and nothing returned while one is
+// missing.
+std::optional<NodeAncestors> nodeAncestors(lod::NodeCache& nodes, const lod::CellKey& key, bool wait);
 
 class SurfelEstimates {
  public:

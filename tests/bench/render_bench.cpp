@@ -25,7 +25,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -253,12 +252,8 @@ int main(int argc, char** argv) {
       // The surfels of the selected nodes, as their upload estimates them.
       const auto surfels_start = std::chrono::steady_clock::now();
       for (const lod::NodeInfo* info : selection.nodes) {
-        render::NodeAncestors ancestors;
-        for (std::optional<lod::CellKey> above = info->key.parent(); above; above = above->parent()) {
-          const lod::NodeInfo* node = octree->find(*above);
-          if (node != nullptr && node->point_count > 0) ancestors.push_back(nodes.get(*above));
-        }
-        render::nodeSurfels(*nodes.get(info->key), ancestors, octree->cube().cellSize(info->key.level));
+        render::nodeSurfels(*nodes.get(info->key), *render::nodeAncestors(nodes, info->key, true),
+                            octree->cube().cellSize(info->key.level));
       }
       const double surfels_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surfels_start).count();
       const double one_pixel = median(one_pixel_splat_ms);

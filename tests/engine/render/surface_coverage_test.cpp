@@ -55,10 +55,11 @@ constexpr double kMaxBackground = 0.01;
 const Rgba kMagenta{255, 0, 255, 255};                                // a background no point of the office has
 constexpr const char* kShapeNames[] = {"point", "square", "surfel"};  // SplatShape's order
 
-view::Camera lookAt(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+// From `from` to `to`, in the frame of a scene placed at `offset` (the office's by default).
+view::Camera lookAt(const Eigen::Vector3d& from, const Eigen::Vector3d& to, const Eigen::Vector3d& offset = kOffset) {
   view::Camera camera;
-  camera.position = kOffset + from;
-  camera.target = kOffset + to;
+  camera.position = offset + from;
+  camera.target = offset + to;
   camera.viewport_width_px = kWidth;
   camera.viewport_height_px = kHeight;
   return camera;
@@ -239,13 +240,9 @@ TEST_F(SurfaceCoverageTest, TheWholeBuildingIsClosed) {
                                           Eigen::Vector3d(bounds.max.data()), kWidth, kHeight)});
 }
 
+// A view of the real room, whose coordinates are its own.
 NamedView roomView(const std::string& name, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  view::Camera camera;
-  camera.position = from;
-  camera.target = to;
-  camera.viewport_width_px = kWidth;
-  camera.viewport_height_px = kHeight;
-  return {name, camera};
+  return {name, lookAt(from, to, Eigen::Vector3d::Zero())};
 }
 
 // Its far wall from 2 m (5.75 % background before discs of neighbourhoods that span no one plane
