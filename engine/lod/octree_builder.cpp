@@ -367,13 +367,24 @@ class Builder {
 
   // Once the first pass has read every input: the point count, the input files, the scans.
   void settleInputs(std::uint64_t count) {
-    if (count == 0) {
-      throw Error("the input holds no points" +
-                  std::string(header_.skipped_non_finite > 0 ? " with a valid position" : ""));
-    }
+    if (count == 0) throw noPointsError();
     header_.point_count = count;
     header_.input_files = static_cast<std::uint32_t>(options_.sources.size());
     settleScans();
+  }
+
+  // A build that found no points: the error names its inputs and counts the points it left out
+  // for want of a position (an empty E57 or LAS, a PLY of NaNs).
+  Error noPointsError() const {
+    const std::vector<BuildSource>& sources = options_.sources;
+    const std::uint64_t skipped = header_.skipped_non_finite;
+    const std::string why = skipped > 0 ? " with a valid position (" + std::to_string(skipped) +
+                                              " points without one were skipped)"
+                                        : "";
+    if (sources.size() == 1) return fileError(sources.front().name, "the file holds no points" + why);
+    std::string names;
+    for (const BuildSource& source : sources) names += (names.empty() ? "'" : ", '") + source.name + "'";
+    return Error("none of the " + std::to_string(sources.size()) + " inputs holds a point" + why + ": " + names);
   }
 
   // The cube around `bounds`: a hair larger than them, so the farthest points stay inside.

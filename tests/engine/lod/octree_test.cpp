@@ -323,12 +323,27 @@ TEST(Octree, ASinglePointAndDuplicatesBuild) {
   EXPECT_EQ(pointsById(*same.octree).size(), 30'000u);
 }
 
-TEST(Octree, NoPointsIsAnErrorAndLeavesNothing) {
+// The message names the inputs (an empty E57 or LAS said "the input holds no points", naming
+// nothing) and counts the points left out for want of a position.
+TEST(Octree, NoPointsIsAnErrorThatNamesTheInputsAndLeavesNothing) {
   test::TempDirectory dir;
-  BuildOptions options;
-  options.sources = {test::generatedSource(10, [](std::uint64_t) { return io::PointRecord{NAN, 0, 0, {}, 0}; })};
-  options.output = dir.file("empty.plumb");
-  EXPECT_THROW(buildOctree(options), Error);
+  const auto message = [&](std::vector<BuildSource> sources) {
+    BuildOptions options;
+    options.sources = std::move(sources);
+    options.output = dir.file("empty.plumb");
+    try {
+      buildOctree(options);
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  const auto invalid = [](std::uint64_t) { return io::PointRecord{NAN, 0, 0, {}, 0}; };
+  EXPECT_EQ(message({test::generatedSource(10, invalid, "scan.e57")}),
+            "'scan.e57': the file holds no points with a valid position (10 points without one were skipped)");
+  EXPECT_EQ(dir.entryCount(), 0u);
+  EXPECT_EQ(message({test::generatedSource(0, invalid, "a.las"), test::generatedSource(0, invalid, "b.ply")}),
+            "none of the 2 inputs holds a point: 'a.las', 'b.ply'");
   EXPECT_EQ(dir.entryCount(), 0u);
 }
 
