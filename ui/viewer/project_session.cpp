@@ -1,12 +1,50 @@
 #include "ui/viewer/project_session.h"
 
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 
 #include "cad/project_file.h"
 #include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
 #include "ui/viewer/demo_scan.h"
 
 namespace plumb::viewer {
+namespace {
+
+bool processCanWriteTo(const std::string& directory) { return ::access(directory.c_str(), W_OK) == 0; }
+
+// FNV-1a (Fowler, Noll and Vo), 64 bits: the same digits for the same path on every machine and
+// build, which std::hash does not promise.
+std::uint64_t fnv1a64(const std::string& text) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (const unsigned char c : text) hash = (hash ^ c) * 0x100000001b3ull;
+  return hash;
+}
+
+}  // namespace
+
+std::string defaultProjectPath(const std::string& cloud, bool (*directory_writable)(const std::string&)) {
+  namespace fs = std::filesystem;
+  const fs::path beside = cloud + ".plumbproj";
+  std::error_code error;
+  if (fs::exists(beside, error)) return beside.string();
+  // Symbolic links and "." or ".." resolved, so that every way of naming the cloud finds one project.
+  fs::path resolved = fs::weakly_canonical(fs::absolute(cloud), error);
+  if (error) resolved = fs::absolute(cloud).lexically_normal();
+  if ((directory_writable ? directory_writable : processCanWriteTo)(resolved.parent_path().string())) {
+    return beside.string();
+  }
+  char digits[17];
+  std::snprintf(digits, sizeof digits, "%016llx",
+                static_cast<unsigned long long>(fnv1a64(resolved.string())));
+  const fs::path projects = userCacheDirectory() / "projects";
+  fs::create_directories(projects, error);
+  if (error) throw Error(projects.string() + ": cannot create the projects directory: " + error.message());
+  return (projects / (resolved.filename().string() + "-" + digits + ".plumbproj")).string();
+}
 
 ProjectSession ProjectSession::open(const std::string& path, const std::string& cloud) {
   ProjectSession session;
@@ -15,7 +53,7 @@ ProjectSession ProjectSession::open(const std::string& path, const std::string& 
   } else if (cloud.empty()) {
     session.path_ = (userCacheDirectory() / "demo.plumbproj").string();
   } else {
-    session.path_ = cloud + ".plumbproj";
+    session.path_ = defaultProjectPath(cloud);
   }
   namespace fs = std::filesystem;
   std::error_code error;

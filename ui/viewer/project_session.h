@@ -23,13 +23,23 @@
 
 namespace plumb::viewer {
 
+// Where a cloud's project goes when none is named: "<cloud>.plumbproj" beside the cloud where one
+// is there already or the cloud's folder takes new files; otherwise (a survey's read-only data
+// folder, a mounted archive) "projects/<cloud's name>-<16 hex digits>.plumbproj" in the cache
+// directory, the digits a hash of the cloud's absolute path, so that two clouds of one name in
+// different folders keep their own projects, and every session of the same cloud finds its own.
+// `directory_writable` decides what "takes new files" means (the process's write access unless a
+// test says otherwise).
+std::string defaultProjectPath(const std::string& cloud,
+                               bool (*directory_writable)(const std::string& directory) = nullptr);
+
 class ProjectSession {
  public:
   using Clock = std::chrono::steady_clock;
   static constexpr std::chrono::milliseconds kDefaultAutosaveInterval{30'000};
 
-  // The session of `path`; an empty path gives the default: "<cloud>.plumbproj" beside the
-  // cloud, or the cache directory's "demo.plumbproj" for the demo (empty `cloud`). Reads the
+  // The session of `path`; an empty path gives the default (defaultProjectPath), or the cache
+  // directory's "demo.plumbproj" for the demo (empty `cloud`). Reads the
   // project (or its newer autosave) when one exists. Throws plumb::Error naming the file and
   // the place for one that cannot be read, is corrupt or is newer than this build reads.
   static ProjectSession open(const std::string& path, const std::string& cloud);

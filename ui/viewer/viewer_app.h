@@ -18,8 +18,9 @@ namespace plumb::viewer {
 
 struct ViewerOptions {
   std::string cloud;  // an octree or a point file (imported in the background); empty: the demo
-  // The project (.plumbproj) to open and save; empty: "<cloud>.plumbproj" (the demo's in the
-  // cache directory). Its cloud and camera are used unless `cloud` and `camera` are given.
+  // The project (.plumbproj) to open and save; empty: defaultProjectPath (project_session.h), or
+  // the demo's in the cache directory. Its cloud and camera are used unless `cloud` and `camera`
+  // are given.
   std::string project;
   std::string script;  // a session script (session_script.h); empty: interactive
   // A script runs on its own clock, 30 frames a second whatever the machine's load, so that it
