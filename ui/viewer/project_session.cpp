@@ -54,6 +54,7 @@ ProjectSession ProjectSession::open(const std::string& path, const std::string& 
     session.path_ = (userCacheDirectory() / "demo.plumbproj").string();
   } else {
     session.path_ = defaultProjectPath(cloud);
+    session.in_cache_ = session.path_ != cloud + ".plumbproj";
   }
   namespace fs = std::filesystem;
   std::error_code error;

@@ -45,6 +45,8 @@ class ProjectSession {
   static ProjectSession open(const std::string& path, const std::string& cloud);
 
   const std::string& path() const { return path_; }
+  // True when the default project of a cloud went to the cache directory (defaultProjectPath).
+  bool inCache() const { return in_cache_; }
   std::string autosavePath() const { return path_ + ".autosave"; }
   // What was read, to load into the scene (once: take it).
   std::optional<cad::Project> takeOpened() { return std::exchange(opened_, std::nullopt); }
@@ -67,6 +69,7 @@ class ProjectSession {
   std::string path_;
   std::optional<cad::Project> opened_;
   bool recovered_ = false;
+  bool in_cache_ = false;
   std::uint64_t saved_version_ = 0;
   std::uint64_t autosaved_version_ = 0;
   Clock::time_point last_autosave_ = Clock::now();

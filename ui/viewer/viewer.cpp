@@ -166,7 +166,7 @@ void Viewer::openProject() {
   std::optional<cad::Project> project = project_.takeOpened();
   if (!project) {
     project_.markSaved(documentState());
-    if (options_.project.empty() && !options_.cloud.empty() && project_.path() != options_.cloud + ".plumbproj") {
+    if (project_.inCache()) {
       project_message_ = "the cloud's folder takes no new files: the project goes to " + project_.path();
       std::printf("plumb view: %s\n", project_message_.c_str());
     }
