@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/huge_pages.h"
 #include "ui/cli/command.h"
 
 int main(int argc, char** argv) {
+  plumb::runWithHugePageHeap(argv);
   CLI::App plumb("Plumb: precise planes, edges and corners from laser scans of buildings", "plumb");
   plumb.set_version_flag("--version", PLUMB_VERSION);
   plumb.require_subcommand(1);

@@ -22,6 +22,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/core/huge_pages.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree.h"
 #include "reco/data_at_click.h"
@@ -64,6 +65,7 @@ Eigen::Vector3d defaultSeed(const lod::Octree& octree) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  plumb::runWithHugePageHeap(argv);  // as plumb runs
   std::string path =
       (std::filesystem::path(PLUMB_SOURCE_DIR).parent_path() / "shared/data/formats/copc/lone-star.copc.laz").string();
   std::optional<Eigen::Vector3d> seed;

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <string>
 
+#include "engine/core/huge_pages.h"
 #include "engine/lod/node_cache.h"
 #include "engine/lod/octree_builder.h"
 #include "reco/region_grower.h"
@@ -107,6 +108,7 @@ void benchDetail(const std::filesystem::path& directory) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  plumb::runWithHugePageHeap(argv);  // as plumb runs
   const bool detail_only = argc == 3 && std::strcmp(argv[2], "--detail-only") == 0;
   if (argc != 2 && !detail_only) {
     std::fprintf(stderr, "usage: plumb_bench_grow DIRECTORY [--detail-only]\n");

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/huge_pages.h"
 #include "engine/io/las_reader.h"
 
 namespace {
@@ -79,6 +80,7 @@ std::string loadAverage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  plumb::runWithHugePageHeap(argv);  // as plumb runs
   std::vector<std::string> files;
   int passes = 5;
   for (int i = 1; i < argc; ++i) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/huge_pages.h"
 #include "engine/core/random.h"
 #include "engine/lod/lod_query.h"
 #include "engine/lod/node_cache.h"
@@ -132,6 +133,7 @@ void localityBenchmark(const std::string& directory) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  plumb::runWithHugePageHeap(argv);  // as plumb runs
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.size() >= 2 && args[0] == "query") {
     for (std::size_t i = 1; i < args.size(); ++i) queryBenchmark(args[i]);

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/huge_pages.h"
 #include "engine/gpu/buffer.h"
 #include "engine/gpu/commands.h"
 #include "engine/gpu/compute_pipeline.h"
@@ -146,6 +147,7 @@ double bareSplatMs(const gpu::Device& device, gpu::MemoryAllocator& allocator,
 }  // namespace
 
 int main(int argc, char** argv) {
+  plumb::runWithHugePageHeap(argv);  // as plumb runs
   CLI::App app("Renderer speed: frame time, splat and bare splat throughput (docs/benchmarks.md)");
   std::string directory;
   std::uint64_t point_count = 6'000'000;
