@@ -12,24 +12,18 @@ namespace {
 constexpr const char* kTunables =
     "glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=1073741824:glibc.malloc.top_pad=67108864";
 
-constexpr bool kSanitized =
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-    true;
-#else
-    false;
-#endif
-
 }  // namespace
 
 void runWithHugePageHeap(char** argv) {
-  if (kSanitized) return;
+  if (kSanitizerOwnsTheHeap) return;
   const char* current = std::getenv("GLIBC_TUNABLES");
   const std::string tunables = current == nullptr ? "" : current;
   if (tunables.find("glibc.malloc.") != std::string::npos) return;
   const std::string wanted = tunables.empty() ? kTunables : tunables + ":" + kTunables;
   if (setenv("GLIBC_TUNABLES", wanted.c_str(), 1) != 0) return;
   execv("/proc/self/exe", argv);
-  // Still here: the program goes on with glibc's defaults. Its children need not try again.
+  // Still here: the program goes on with glibc's defaults; GLIBC_TUNABLES stays set, so the
+  // programs it starts have the heap on huge pages without running twice.
 }
 
 }  // namespace plumb

@@ -11,6 +11,14 @@
 
 namespace plumb {
 
+// A sanitizer build's allocator is its own and ignores glibc's tunables: nothing to set there.
+inline constexpr bool kSanitizerOwnsTheHeap =
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    true;
+#else
+    false;
+#endif
+
 // Call first in main, before any thread or allocation worth keeping. Unless the environment
 // already names a malloc tunable of glibc (a user's own choice, or this function's, in the program
 // it re-ran), sets GLIBC_TUNABLES to add
@@ -18,8 +26,8 @@ namespace plumb {
 //   glibc.malloc.mmap_threshold=1 GiB    blocks up to 1 GiB from the heap, reused once freed,
 //                                        instead of mapped fresh (and faulted in) each time
 //   glibc.malloc.top_pad=64 MiB          the heap grown in steps of whole huge pages
-// and executes /proc/self/exe with the same arguments. Returns where it does not (a sanitizer
-// build, whose allocator is its own; no /proc; the exec failing), and the program runs as it is.
+// and executes /proc/self/exe with the same arguments. Returns where it does not
+// (kSanitizerOwnsTheHeap; no /proc; the exec failing), and the program runs as it is.
 // A user who wants none of it sets GLIBC_TUNABLES=glibc.malloc.hugetlb=0.
 void runWithHugePageHeap(char** argv);
 

@@ -23,32 +23,25 @@ std::string runProbe(const std::string& environment) {
   return out;
 }
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-
 // Release and Debug builds alike (the sanitizers bring their own allocator and are left alone).
 TEST(HugePages, TheHeapIsAdvisedAsHugePagesInReleaseBuilds) {
-  if (kSanitized) GTEST_SKIP() << "a sanitizer's allocator ignores glibc's tunables";
+  if (kSanitizerOwnsTheHeap) GTEST_SKIP() << "a sanitizer's allocator ignores glibc's tunables";
   const std::string out = runProbe("-u GLIBC_TUNABLES");
   EXPECT_NE(out.find("tunables glibc.malloc.hugetlb=1:"), std::string::npos) << out;
   EXPECT_NE(out.find(" hg"), std::string::npos) << out;
 }
 
 TEST(HugePages, AUsersOwnMallocTunablesAreKeptInReleaseBuilds) {
-  if (kSanitized) GTEST_SKIP() << "a sanitizer's allocator ignores glibc's tunables";
+  if (kSanitizerOwnsTheHeap) GTEST_SKIP() << "a sanitizer's allocator ignores glibc's tunables";
   const std::string out = runProbe("GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
   EXPECT_NE(out.find("tunables glibc.malloc.hugetlb=0\n"), std::string::npos) << out;
   EXPECT_EQ(out.find(" hg"), std::string::npos) << out;
 }
 
 TEST(HugePages, OtherTunablesAreKeptBesideThemInReleaseBuilds) {
-  if (kSanitized) GTEST_SKIP() << "a sanitizer's allocator ignores glibc's tunables";
+  if (kSanitizerOwnsTheHeap) GTEST_SKIP() << "a sanitizer's allocator ignores glibc's tunables";
   const std::string out = runProbe("GLIBC_TUNABLES=glibc.rtld.optional_static_tls=2048");
-  EXPECT_NE(out.find("tunables glibc.rtld.optional_static_tls=2048:glibc.malloc.hugetlb=1:"), std::string::npos)
-      << out;
+  EXPECT_NE(out.find("tunables glibc.rtld.optional_static_tls=2048:glibc.malloc.hugetlb=1:"), std::string::npos) << out;
   EXPECT_NE(out.find(" hg"), std::string::npos) << out;
 }
 
