@@ -37,18 +37,14 @@ CellState& Grower::loaded(const CellKey& key) {
 // and at medium detail the cell keeps r. A point of a sparser surface in such a cell (a wall's
 // far face, scanned from afar) is searched within r still (processCell).
 void Grower::indexCell(CellState& state) const {
-  state.radius = radius_;
-  state.grid = PointGrid(parameters_.seed, radius_);
-  state.by_grid = GridIndex(state.grid, state.points);
+  state.index(radius_, parameters_.seed);
   if (!radius_from_data_) return;
   const std::uint32_t per_cell = state.by_grid.medianCellPoints();
   if (per_cell == 0) return;
   const double spacing = radius_ / std::sqrt(static_cast<double>(per_cell));
   const double radius = std::max(reachFor(spacing), radius_ / kMaxRadiusShrink);
   if (radius >= 0.5 * radius_) return;
-  state.radius = radius;
-  state.grid = PointGrid(parameters_.seed, radius);
-  state.by_grid = GridIndex(state.grid, state.points);
+  state.index(radius, parameters_.seed);
 }
 
 void Grower::enqueue(const CellKey& key) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "reco/continuity_scan.h"
 #include "reco/grower.h"
 
 namespace plumb::reco::detail {
@@ -20,7 +21,7 @@ void Grower::addToGrid(const Eigen::Vector3d& p, std::uint32_t segment) {
 // Records point `index` of cell `key` as joining `segment`.
 void Grower::assign(const CellKey& key, CellState& state, std::uint32_t index, std::uint32_t segment) {
   membership_.assign(state.refs[index], segment);
-  state.assigned[index] = static_cast<std::uint8_t>(segment + 1);
+  state.join(index, static_cast<std::uint8_t>(segment + 1));
   const Eigen::Vector3d& p = state.points[index];
   regressions_[segment].add(p);
   segment_points_[segment].push_back(p);
@@ -218,42 +219,32 @@ bool Grower::processCell(const CellKey& key) {
 bool Grower::continuesSurface(const CellState& state, const Eigen::Vector3d& p, std::uint32_t segment,
                               std::vector<std::uint32_t>* free_around, std::uint32_t* around) const {
   if (options_.continuity <= 0.0) return true;
+  const Plane& plane = planes_[segment];
+  const double window = 2.0 * thresholds_[segment];
+  ContinuityScan scan;
   // In single precision relative to the grid's origin (GridIndex::bucket): millimetres within
   // micrometres over tens of metres.
-  const Plane& plane = planes_[segment];
-  const Eigen::Vector3f normal = plane.normal.cast<float>();
-  const float origin_offset = static_cast<float>(plane.signedDistance(state.grid.origin()));
   const Eigen::Vector3f at = (p - state.grid.origin()).cast<float>();
-  const float window = static_cast<float>(2.0 * thresholds_[segment]);
-  const float radius2 = static_cast<float>(state.radius * state.radius);
-  const std::uint8_t own = static_cast<std::uint8_t>(segment + 1);
-  float free_sum = 0.0f;
-  float own_sum = 0.0f;
-  std::uint32_t free_count = 0;
-  std::uint32_t own_count = 0;
-  state.grid.forEachAround(p, [&](const GridKey& key) {
+  scan.at = {at.x(), at.y(), at.z()};
+  scan.normal = {static_cast<float>(plane.normal.x()), static_cast<float>(plane.normal.y()),
+                 static_cast<float>(plane.normal.z())};
+  scan.origin_offset = static_cast<float>(plane.signedDistance(state.grid.origin()));
+  scan.window = static_cast<float>(window);
+  scan.radius2 = static_cast<float>(state.radius * state.radius);
+  scan.own = static_cast<std::uint8_t>(segment + 1);
+  scan.units_per_m = continuityUnitsPerMetre(window);
+  ContinuitySums sums;
+  state.grid.forEachAroundWithin(p, state.radius, [&](const GridKey& key) {
     const GridIndex::Bucket bucket = state.by_grid.bucket(key);
-    for (std::size_t k = 0; k < bucket.indices.size(); ++k) {
-      const std::uint8_t owner = state.assigned[bucket.indices[k]];
-      if (owner != 0 && owner != own) continue;
-      const Eigen::Vector3f& q = bucket.offsets[k];
-      if ((q - at).squaredNorm() > radius2) continue;
-      ++*around;
-      if (owner == 0) free_around->push_back(bucket.indices[k]);
-      const float d = normal.dot(q) + origin_offset;
-      if (std::abs(d) >= window) continue;
-      if (owner == 0) {
-        free_sum += d;
-        ++free_count;
-      } else {
-        own_sum += d;
-        ++own_count;
-      }
-    }
+    if (bucket.indices.empty()) return;
+    scanBucket(scan, bucket, std::span(state.assigned_by_grid).subspan(bucket.first, bucket.indices.size()),
+               *free_around, sums);
   });
-  if (free_count < kMinContinuityPoints || own_count < kMinContinuityPoints) return true;
-  return std::abs(free_sum / static_cast<float>(free_count) - own_sum / static_cast<float>(own_count)) <=
-         options_.continuity * thresholds_[segment];
+  *around += sums.near;
+  if (sums.free_count < kMinContinuityPoints || sums.own_count < kMinContinuityPoints) return true;
+  const double free_mean = static_cast<double>(sums.free_sum) / static_cast<double>(sums.free_count);
+  const double own_mean = static_cast<double>(sums.own_sum) / static_cast<double>(sums.own_count);
+  return std::abs(free_mean - own_mean) / scan.units_per_m <= options_.continuity * thresholds_[segment];
 }
 
 void Grower::refit(std::uint32_t segment) {

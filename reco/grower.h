@@ -113,6 +113,24 @@ struct CellState {
     rejected_epoch.reserve(n);
     rejected_by.reserve(n);
   }
+  // Records that point `index` joined the segment of `flag` (s + 1).
+  void join(std::uint32_t index, std::uint8_t flag) {
+    assigned[index] = flag;
+    if (!grid_place.empty()) assigned_by_grid[grid_place[index]] = flag;
+  }
+  // Sets the cell's search radius and indexes its points by a grid of that step.
+  void index(double search_radius, const Eigen::Vector3d& grid_origin) {
+    radius = search_radius;
+    grid = PointGrid(grid_origin, search_radius);
+    by_grid = GridIndex(grid, points);
+    const std::vector<std::uint32_t>& order = by_grid.order();
+    assigned_by_grid.resize(order.size());
+    grid_place.resize(order.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) {
+      assigned_by_grid[k] = assigned[order[k]];
+      grid_place[order[k]] = k;
+    }
+  }
   // Appends a point that no segment has tested yet.
   void add(const Eigen::Vector3d& position, const lod::PointRef& ref, std::uint8_t segment_flag) {
     points.push_back(position);
@@ -142,6 +160,10 @@ struct CellState {
   double radius = 0.0;
   PointGrid grid{Eigen::Vector3d::Zero(), 1.0};
   GridIndex by_grid;  // the points by cell of `grid`
+  // `assigned` in by_grid's order, and each point's place in that order: the continuity test
+  // reads the owners of a grid cell's points one after another, as it reads their positions.
+  std::vector<std::uint8_t> assigned_by_grid;
+  std::vector<std::uint32_t> grid_place;
   // Where `radius` is less than r: the points by cell of a grid of r, made when a point of a
   // surface sparser than the cell's bulk is first searched within r (processCell).
   std::optional<GridIndex> by_wide_grid;

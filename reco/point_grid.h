@@ -64,6 +64,39 @@ class PointGrid {
     }
   }
 
+  // Calls visit(key) for the cells of forEachAround, in its order, that reach within `reach` (at
+  // most one step) of p: a search within the step passes over the cells only their corners or
+  // edges bring near (on average 20.6 of the 27 are left). A cell is passed over
+  // only where it lies a thousandth farther than `reach`, so that a point the caller measures in
+  // single precision at `reach` is never lost to the rounding.
+  template <typename Visit>
+  void forEachAroundWithin(const Eigen::Vector3d& p, double reach, Visit&& visit) const {
+    const Eigen::Vector3d g = (p - origin_) * inverse_;
+    const GridKey k{static_cast<std::int64_t>(std::floor(g.x())), static_cast<std::int64_t>(std::floor(g.y())),
+                    static_cast<std::int64_t>(std::floor(g.z()))};
+    // Per axis, the squared gap (in steps) to the neighbour below, to p's own layer and above.
+    std::array<std::array<double, 3>, 3> gap2{};
+    const std::array<std::int64_t, 3> cell{k.x, k.y, k.z};
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double within = g[static_cast<Eigen::Index>(a)] - static_cast<double>(cell[a]);
+      gap2[a] = {within * within, 0.0, (1.0 - within) * (1.0 - within)};
+    }
+    const double limit = reach * inverse_ * 1.001;
+    const double limit2 = limit * limit;
+    visit(k);
+    for (std::int64_t dz = -1; dz <= 1; ++dz) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const double row2 = gap2[2][static_cast<std::size_t>(dz + 1)] + gap2[1][static_cast<std::size_t>(dy + 1)];
+        if (row2 > limit2) continue;
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          if (dx == 0 && dy == 0 && dz == 0) continue;
+          if (row2 + gap2[0][static_cast<std::size_t>(dx + 1)] > limit2) continue;
+          visit(GridKey{k.x + dx, k.y + dy, k.z + dz});
+        }
+      }
+    }
+  }
+
   // Calls visit(key) for the 2 x 2 x 2 grid cells nearest p: p's own cell and, along each axis,
   // the neighbour on the side of p's nearer face. They hold every point within half a step of p.
   template <typename Visit>

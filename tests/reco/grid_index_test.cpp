@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -41,13 +42,17 @@ TEST(GridIndex, BucketsEveryPointOnceInAscendingOrder) {
   }
   EXPECT_EQ(found, points.size());
   EXPECT_TRUE(index.at({1000, 1000, 1000}).empty());
-  // bucket(): the same indices, each with its position relative to the grid's origin in floats.
+  // bucket(): the same indices, where they start in order(), each with its position relative to
+  // the grid's origin in floats.
   for (const auto& [key, indices] : expected) {
     const GridIndex::Bucket bucket = index.bucket({std::get<0>(key), std::get<1>(key), std::get<2>(key)});
     ASSERT_EQ(std::vector<std::uint32_t>(bucket.indices.begin(), bucket.indices.end()), indices);
-    ASSERT_EQ(bucket.offsets.size(), indices.size());
+    ASSERT_EQ(bucket.x.size(), indices.size());
+    ASSERT_EQ(bucket.y.size(), indices.size());
+    ASSERT_EQ(bucket.z.size(), indices.size());
     for (std::size_t k = 0; k < indices.size(); ++k) {
-      EXPECT_EQ(bucket.offsets[k], (points[indices[k]] - origin).cast<float>());
+      EXPECT_EQ(index.order()[bucket.first + k], indices[k]);
+      EXPECT_EQ(Eigen::Vector3f(bucket.x[k], bucket.y[k], bucket.z[k]), (points[indices[k]] - origin).cast<float>());
     }
   }
   EXPECT_TRUE(index.bucket({1000, 1000, 1000}).indices.empty());
@@ -99,6 +104,42 @@ TEST(PointGrid, TheEightNearestCellsHoldEveryPointWithinHalfAStep) {
     }
   }
   EXPECT_EQ(checked, 40000u);
+}
+
+// The cells around a point within one step: in forEachAround's order (p's own first), every cell
+// forEachAround gives that holds a point within the step, and on average about 20.6 of the 27.
+TEST(PointGrid, TheCellsWithinAStepAreThoseAroundThatCanHoldAPointWithinIt) {
+  Random random(7);
+  const Eigen::Vector3d origin(512000.0, 5403000.0, 250.0);
+  const double step = 0.05;
+  const PointGrid grid(origin, step);
+  std::size_t visited_total = 0;
+  constexpr int kPoints = 4000;
+  for (int i = 0; i < kPoints; ++i) {
+    const Eigen::Vector3d p =
+        origin + Eigen::Vector3d(random.uniform() - 0.5, random.uniform() - 0.5, random.uniform() - 0.5);
+    std::vector<std::tuple<std::int64_t, std::int64_t, std::int64_t>> around;
+    grid.forEachAround(p, [&](const GridKey& key) { around.push_back(tupleOf(key)); });
+    std::vector<std::tuple<std::int64_t, std::int64_t, std::int64_t>> within;
+    grid.forEachAroundWithin(p, step, [&](const GridKey& key) { within.push_back(tupleOf(key)); });
+    ASSERT_FALSE(within.empty());
+    EXPECT_EQ(within.front(), tupleOf(grid.keyOf(p)));
+    // A subsequence of forEachAround's order.
+    auto next = around.begin();
+    for (const auto& key : within) {
+      next = std::find(next, around.end(), key);
+      ASSERT_NE(next, around.end()) << "point " << i;
+    }
+    visited_total += within.size();
+    for (int j = 0; j < 20; ++j) {
+      Eigen::Vector3d offset(random.gaussian(), random.gaussian(), random.gaussian());
+      offset *= (j % 2 == 0 ? 1.0 : random.uniform()) * step / offset.norm();
+      const auto key = tupleOf(grid.keyOf(p + offset * (1.0 - 1e-9)));
+      EXPECT_NE(std::find(within.begin(), within.end(), key), within.end()) << "point " << i << ", neighbour " << j;
+    }
+  }
+  const double mean = static_cast<double>(visited_total) / kPoints;
+  EXPECT_NEAR(mean, 1.0 + 6.0 + 12.0 * M_PI / 4.0 + 8.0 * M_PI / 6.0, 0.3);
 }
 
 }  // namespace
