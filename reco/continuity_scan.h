@@ -5,8 +5,8 @@
 //
 // Offsets are summed in integer units (micrometres, coarser only where a window of more than
 // 16 m would overflow a chunk's 32-bit sums): integer sums are exact, so the order of the
-// additions cannot change them, and the loop runs four points at a time in vector registers
-// without a branch. Whether a point is near, free and within the window is as good as random;
+// additions cannot change them, and the compiler runs the loop on several points at once in
+// vector registers, without a branch. Whether a point is near, free and within the window is as good as random;
 // the branches of a point-by-point loop mispredicted on half the points, most of the test's time.
 
 #include <array>
