@@ -163,7 +163,7 @@ bool Grower::processCell(const CellKey& key) {
   const PointGrid wide_grid(parameters_.seed, radius_);
   auto visitWithinR = [&](const Assigned& from) {
     if (!state.by_wide_grid) state.by_wide_grid.emplace(wide_grid, state.points);
-    wide_grid.forEachAround(from.position, [&](const GridKey& grid_key) {
+    wide_grid.forEachAroundWithin(from.position, radius_, [&](const GridKey& grid_key) {
       for (std::uint32_t i : state.by_wide_grid->at(grid_key)) {
         if (state.assigned[i]) continue;
         const double distance2 = (state.points[i] - from.position).squaredNorm();
@@ -183,7 +183,7 @@ bool Grower::processCell(const CellKey& key) {
       continue;
     }
     std::uint32_t around = 0;
-    state.grid.forEachAround(from.position, [&](const GridKey& grid_key) {
+    state.grid.forEachAroundWithin(from.position, state.radius, [&](const GridKey& grid_key) {
       for (std::uint32_t i : state.by_grid.at(grid_key)) {
         const std::uint8_t owner = state.assigned[i];
         if (owner != 0 && !(shrunk && owner == from.segment + 1)) continue;
