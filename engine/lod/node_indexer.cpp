@@ -149,6 +149,8 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
   //    cell order, one cursor per row walks forward through them.
   std::array<std::size_t, (2 * kReach + 1) * (2 * kReach + 1)> cursors{};
   for (Slot& slot : slots_) {
+    slot.quota = 0;
+    if (slot.own == 0) continue;  // the cursors catch up at the next cell that has points
     const std::uint32_t cx = slot.cell / (kSamplingGrid * kSamplingGrid);
     const std::uint32_t cy = slot.cell / kSamplingGrid % kSamplingGrid;
     const std::uint32_t cz = slot.cell % kSamplingGrid;
@@ -170,11 +172,18 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
         }
       }
     }
-    const double mean = double(held + own) / static_cast<double>(around);
-    double occupied = 0.0;
-    for (std::size_t n = 0; n < around; ++n) occupied += std::min(1.0, double(points_around[n]) / mean);
-    slot.quota = 0;
-    if (slot.own == 0 || occupied <= held) continue;
+    // A neighbour of p points occupies min(1, p / mean) of a cell, mean = total / around: whole
+    // where p * around >= total, and the others together (their points) * around / total.
+    const std::uint64_t total = held + own;
+    std::uint64_t whole = 0, partial_points = 0;
+    for (std::size_t n = 0; n < around; ++n) {
+      const bool full = std::uint64_t{points_around[n]} * around >= total;
+      whole += full;
+      partial_points += full ? 0 : points_around[n];
+    }
+    const double occupied =
+        static_cast<double>(whole) + static_cast<double>(partial_points * around) / static_cast<double>(total);
+    if (occupied <= held) continue;
     const double fraction = std::min(1.0, (occupied - held) / own);
     const double share = fraction * slot.own;
     const double dither = unitInterval(mix(slot.cell ^ (std::uint64_t{key.level} << 32) ^ key.x * 0x9E3779B1ULL ^
@@ -185,9 +194,14 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
   // 3. In each cell, keep the `quota` points of lowest hash.
   selected_.assign(points.size(), 0);
   for (const Slot& slot : slots_) {
+    if (slot.quota == 0) continue;
     const auto begin = order_.begin() + slot.first;
     const auto end = begin + slot.own;
     const auto keep = begin + std::min(slot.quota, slot.own);
+    if (keep == end) {  // every point of the cell: no ranking needed
+      for (auto it = begin; it != end; ++it) selected_[*it] = 1;
+      continue;
+    }
     // By the hash's high half, then by a hash of the place; ties of both (duplicates) are broken
     // by input position, so the choice is deterministic.
     std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
