@@ -198,18 +198,16 @@ std::size_t NodeIndexer::selectSubsample(const CellKey& key, std::span<BuildPoin
     const auto begin = order_.begin() + slot.first;
     const auto end = begin + slot.own;
     const auto keep = begin + std::min(slot.quota, slot.own);
-    if (keep == end) {  // every point of the cell: no ranking needed
-      for (auto it = begin; it != end; ++it) selected_[*it] = 1;
-      continue;
-    }
     // By the hash's high half, then by a hash of the place; ties of both (duplicates) are broken
-    // by input position, so the choice is deterministic.
-    std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
-      if (score_[a] != score_[b]) return score_[a] < score_[b];
-      const std::uint64_t hash_a = placeHash(points[a].place);
-      const std::uint64_t hash_b = placeHash(points[b].place);
-      return hash_a != hash_b ? hash_a < hash_b : a < b;
-    });
+    // by input position, so the choice is deterministic. A cell that keeps all needs no ranking.
+    if (keep != end) {
+      std::nth_element(begin, keep, end, [&](std::uint32_t a, std::uint32_t b) {
+        if (score_[a] != score_[b]) return score_[a] < score_[b];
+        const std::uint64_t hash_a = placeHash(points[a].place);
+        const std::uint64_t hash_b = placeHash(points[b].place);
+        return hash_a != hash_b ? hash_a < hash_b : a < b;
+      });
+    }
     for (auto it = begin; it != keep; ++it) selected_[*it] = 1;
   }
 
