@@ -26,6 +26,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -59,7 +60,7 @@ class LazByteInput {
   std::size_t buffered() const { return filled_ - at_; }
   // The next 4 bytes as a big-endian number, not consumed; skip() consumes them.
   std::uint32_t peekFour() const {
-    const std::uint8_t* p = buffer_.data() + at_;
+    const std::uint8_t* p = buffer_.get() + at_;
     return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
   }
   void skip(std::size_t bytes) { at_ += bytes; }
@@ -74,7 +75,8 @@ class LazByteInput {
   void refill();
 
   FileSource& source_;
-  std::vector<std::uint8_t> buffer_;
+  std::unique_ptr<std::uint8_t[]> buffer_;  // not zeroed: a small file's chunk needs a few bytes of it
+  std::size_t capacity_ = 0;
   std::uint64_t buffer_start_ = 0;  // file offset of buffer_[0]
   std::size_t at_ = 0, filled_ = 0;
   std::uint64_t end_ = 0;
@@ -96,23 +98,35 @@ class LazBitModel {
 };
 
 // An adaptive model of `symbols` values (2 to 2048). reset() returns it to equal frequencies.
+// Its arrays lie in one block; a model just reset copies the block that every model of its size
+// has then (resetBlock() in the .cpp), made once for the process.
 class LazSymbolModel {
  public:
   explicit LazSymbolModel(std::uint32_t symbols);
+  LazSymbolModel(const LazSymbolModel& other);
+  LazSymbolModel(LazSymbolModel&&) noexcept = default;
+  LazSymbolModel& operator=(const LazSymbolModel& other) { return *this = LazSymbolModel(other); }
+  LazSymbolModel& operator=(LazSymbolModel&&) noexcept = default;
+  ~LazSymbolModel() = default;
+
   std::uint32_t symbols() const { return symbols_; }
   void reset();
 
  private:
   friend class LazArithmeticDecoder;
   void update();
+  void allocate();  // block_ and the pointers into it, for symbols_ and table_size_
+  std::size_t blockSize() const;
 
   std::uint32_t symbols_;
   std::uint32_t last_symbol_;
   std::uint32_t table_size_ = 0, table_shift_ = 0;  // table_size_ 0: no look-up table
   std::uint32_t total_count_ = 0, update_cycle_ = 0, until_update_ = 0;
-  std::vector<std::uint32_t> distribution_;  // cumulative, scaled to 2^15
-  std::vector<std::uint32_t> counts_;
-  std::vector<std::uint32_t> table_;  // table_size_ + 2 entries: first symbol per slice of the range
+  std::unique_ptr<std::uint32_t[]> block_;
+  std::uint32_t* distribution_ = nullptr;       // symbols_ + 1: cumulative, scaled to 2^15, and a padding
+  std::uint32_t* counts_ = nullptr;             // symbols_
+  std::uint32_t* table_ = nullptr;              // table_size_ + 2: first symbol per slice of the range
+  const std::uint32_t* reset_block_ = nullptr;  // the block as reset() leaves it, shared
 };
 
 // Symbol models made and reset when first used in a chunk, not when the chunk begins: a coder
@@ -224,7 +238,7 @@ inline std::uint32_t LazArithmeticDecoder::decodeBit(LazBitModel& model) {
 }
 
 inline std::uint32_t LazArithmeticDecoder::decodeSymbol(LazSymbolModel& model) {
-  const std::uint32_t* const distribution = model.distribution_.data();
+  const std::uint32_t* const distribution = model.distribution_;
   const std::uint32_t value = value_;
   const std::uint32_t length = length_ >> kSymbolLengthShift;
   std::uint32_t symbol = 0;
