@@ -168,9 +168,7 @@ LazSymbolModel::LazSymbolModel(std::uint32_t symbols) : symbols_(symbols), last_
   table_shift_ = table_shape.shift;
   reset_block_ = resetBlock(symbols_);
   allocate();
-  std::memcpy(block_.get(), reset_block_, blockSize() * sizeof(std::uint32_t));
-  total_count_ = symbols_;
-  update_cycle_ = until_update_ = (symbols_ + 6) >> 1;
+  reset();  // copies: total_count_ is 0 until then, never a reset model's symbols_
 }
 
 LazSymbolModel::LazSymbolModel(const LazSymbolModel& other)
